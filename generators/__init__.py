@@ -1,0 +1,1 @@
+"""LightRocks generators package."""

@@ -1,0 +1,1 @@
+"""LightRocks graphviz package."""

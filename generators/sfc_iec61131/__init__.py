@@ -1,0 +1,1 @@
+"""LightRocks sfc_iec61131 package."""

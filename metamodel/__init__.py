@@ -1,0 +1,1 @@
+"""LightRocks metamodel package."""

@@ -1,0 +1,130 @@
+"""The contract between generated code and robot adapters.
+
+Generated code never talks to a simulator or a robot directly: an action state hands one
+device command and its stop conditions to an :class:`Adapter`, which runs its control loop,
+evaluates the stop conditions on every control tick and reports which one fired. All values
+crossing this boundary are in SI units; frames are ``pinocchio.SE3`` in the world frame.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Vector3:
+    """A 3-vector whose components the model language reads as ``.x``, ``.y``, ``.z``."""
+
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+
+    @classmethod
+    def of(cls, values: Sequence[float] | np.ndarray) -> Vector3:
+        return cls(float(values[0]), float(values[1]), float(values[2]))
+
+    def array(self) -> np.ndarray:
+        return np.array([self.x, self.y, self.z])
+
+    def norm(self) -> float:
+        return float(np.linalg.norm(self.array()))
+
+
+@dataclass(frozen=True)
+class Wrench:
+    """Force [N] and torque [Nm] measured at the TCP, axes of the world frame."""
+
+    force: Vector3 = field(default_factory=Vector3)
+    torque: Vector3 = field(default_factory=Vector3)
+
+    @classmethod
+    def of(cls, values: Sequence[float] | np.ndarray) -> Wrench:
+        return cls(Vector3.of(values[:3]), Vector3.of(values[3:6]))
+
+
+class DeviceState(Protocol):
+    """The sensor values of one device at one control tick, as attributes by sensor name."""
+
+    def __getattr__(self, sensor: str) -> Any: ...
+
+
+class Snapshot(Protocol):
+    """All sensor values at one control tick: ``snapshot.robot.wrench.torque.z``."""
+
+    time: float
+
+    def __getattr__(self, device: str) -> DeviceState: ...
+
+
+StopPredicate = Callable[[Snapshot], bool]
+
+
+@dataclass(frozen=True)
+class StopCondition:
+    """A named stop condition λ; its name becomes the outcome when it holds first."""
+
+    name: str
+    holds: StopPredicate
+
+
+@dataclass(frozen=True)
+class CommandResult:
+    """How a device command ended: the outcome name and the command's return value μ."""
+
+    outcome: str
+    value: Any = None
+
+
+TIMEOUT = "timeout"
+
+
+class AdapterError(RuntimeError):
+    """A fault of the device or the adapter; the runtime turns it into the outcome ``error``."""
+
+
+@runtime_checkable
+class Adapter(Protocol):
+    """A robot API: the devices of one cell, a clock, and a control loop.
+
+    ``execute`` blocks until the first stop condition holds (checked in declaration order on
+    every control tick), or until ``budget`` seconds of adapter time have passed (outcome
+    ``TIMEOUT``). Commands without motion (gripper, camera) finish with the first condition
+    that holds once the command has settled. Whatever way a command ends, the devices are left
+    holding still and compliant.
+    """
+
+    @property
+    def time(self) -> float:
+        """Adapter clock in seconds since the start of the run."""
+        ...
+
+    def devices(self) -> Mapping[str, str]:
+        """Device instance name (as in the cell) to device type name."""
+        ...
+
+    def snapshot(self) -> Snapshot:
+        """Current sensor values of every device."""
+        ...
+
+    def execute(
+        self,
+        device: str,
+        command: str,
+        args: Mapping[str, Any],
+        stop: Sequence[StopCondition],
+        budget: float,
+    ) -> CommandResult:
+        """Run one device command until a stop condition holds or the budget is spent."""
+        ...
+
+    def hold(self) -> None:
+        """Stop every command; keep the robot still and compliant where it is."""
+        ...
+
+    def close(self) -> None:
+        """Release simulator or hardware resources."""
+        ...

@@ -1,0 +1,1 @@
+"""LightRocks workbench package."""
