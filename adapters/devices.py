@@ -1,0 +1,467 @@
+"""The device layer both adapters share: robot, gripper and camera on top of a ``Plant``.
+
+A plant is the physics (MuJoCo, or Pinocchio ABA with penalty contacts); everything a skill
+sees — commands, argument checks, sensors, stop conditions, the 1 kHz loop — lives here, so
+the two adapters behave alike by construction. See docs/adapters.md for the contract.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+from collections.abc import Callable, Mapping, Sequence
+from types import SimpleNamespace
+from typing import Any, Protocol
+
+import mujoco
+import numpy as np
+import pinocchio as pin
+
+from adapters.control import DT, ArmState, CartesianImpedance, JointImpedance
+from adapters.robot_model import ARM_DOF, FT_SITE, HAND_BODY, READY_Q, load_robot
+from adapters.sensing import WristSensor
+from runtime.contract import (
+    TIMEOUT,
+    AdapterError,
+    CommandResult,
+    StopCondition,
+    Vector3,
+    Wrench,
+)
+
+DEFAULT_STIFFNESS = (2000.0, 2000.0, 2000.0, 200.0, 200.0, 200.0)
+DEFAULT_DAMPING = (0.7,) * 6
+DEFAULT_JOINT_STIFFNESS = (400.0, 400.0, 300.0, 300.0, 100.0, 100.0, 50.0)
+DEFAULT_JOINT_DAMPING = (0.7,) * 7
+SETTLE_TIME = 0.3
+"""Seconds the robot holds the ready pose at start-up before the wrist sensor is tared."""
+GRIPPER_SETTLE = 0.02
+OPEN_FORCE = 20.0
+GRIPPER_REST_SPEED = 1e-3
+GRIPPER_EMPTY_WIDTH = 2e-3
+"""A closed gripper narrower than this holds nothing."""
+
+
+class Plant(Protocol):
+    """The physics under the device layer, stepped at 1 kHz.
+
+    ``q``/``v`` are the NV robot joint positions and velocities (arm, then fingers).
+    ``model``/``data`` are the MuJoCo scene, used for ground truth and rendering; a plant that
+    does not simulate with MuJoCo keeps ``data`` in sync on ``sync()``.
+    """
+
+    q: np.ndarray
+    v: np.ndarray
+    model: mujoco.MjModel
+    data: mujoco.MjData
+
+    def step(self, tau: np.ndarray, grip: float) -> None:
+        """Advance DT with arm torques ``tau`` and gripper force ``grip`` (> 0 closes)."""
+        ...
+
+    def wrist(self) -> np.ndarray:
+        """Raw wrist wrench: link7 on the hand subtree, at the ft site, world axes."""
+        ...
+
+    def sync(self) -> None:
+        """Make ``data`` reflect the current state (poses of bodies and sites)."""
+        ...
+
+
+MeasureHook = Callable[[str, mujoco.MjModel, mujoco.MjData], dict[str, Any]]
+
+
+def _scene_measurements(scene: str, model: mujoco.MjModel, data: mujoco.MjData) -> dict:
+    """Scene-specific ground truth from the optional ``adapters.scenes.measurements`` hook."""
+    try:
+        scenes = importlib.import_module("adapters.scenes")
+    except ModuleNotFoundError:
+        return {}
+    hook: MeasureHook | None = getattr(scenes, "measurements", None)
+    return dict(hook(scene, model, data)) if hook is not None else {}
+
+
+def _vector(name: str, size: int, *, positive: bool = False) -> Callable[[Any], np.ndarray]:
+    def convert(value: Any) -> np.ndarray:
+        try:
+            array = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise AdapterError(f"{name} must be {size} numbers, got {value!r}") from None
+        if array.shape != (size,) or not np.all(np.isfinite(array)):
+            raise AdapterError(f"{name} must be {size} finite numbers, got {value!r}")
+        if positive and np.any(array < 0):
+            raise AdapterError(f"{name} must not be negative, got {value!r}")
+        return array
+
+    return convert
+
+
+def _positive(name: str) -> Callable[[Any], float]:
+    def convert(value: Any) -> float:
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise AdapterError(f"{name} must be a number, got {value!r}") from None
+        if not math.isfinite(number) or number <= 0:
+            raise AdapterError(f"{name} must be a positive number, got {value!r}")
+        return number
+
+    return convert
+
+
+def _frame(name: str) -> Callable[[Any], pin.SE3]:
+    def convert(value: Any) -> pin.SE3:
+        if not isinstance(value, pin.SE3):
+            raise AdapterError(f"{name} must be a pinocchio.SE3, got {type(value).__name__}")
+        return value
+
+    return convert
+
+
+def _optional_name(name: str) -> Callable[[Any], str | None]:
+    def convert(value: Any) -> str | None:
+        if value is not None and not isinstance(value, str):
+            raise AdapterError(f"{name} must be a scene object name, got {value!r}")
+        return value
+
+    return convert
+
+
+_REQUIRED = object()
+
+_SIGNATURES: dict[tuple[str, str], dict[str, tuple[Any, Callable[[Any], Any]]]] = {
+    ("robot", "moveCartesian"): {
+        "goal": (_REQUIRED, _frame("goal")),
+        "task": (None, _frame("task")),
+        "stiffness": (DEFAULT_STIFFNESS, _vector("stiffness", 6, positive=True)),
+        "damping": (DEFAULT_DAMPING, _vector("damping", 6, positive=True)),
+        "speed": (0.1, _positive("speed")),
+        "angular_speed": (1.0, _positive("angular_speed")),
+        "ref": (None, _optional_name("ref")),
+    },
+    ("robot", "moveJoint"): {
+        "q": (_REQUIRED, _vector("q", ARM_DOF)),
+        "stiffness": (DEFAULT_JOINT_STIFFNESS, _vector("stiffness", ARM_DOF, positive=True)),
+        "damping": (DEFAULT_JOINT_DAMPING, _vector("damping", ARM_DOF, positive=True)),
+    },
+    ("gripper", "open"): {},
+    ("gripper", "close"): {"force": (20.0, _positive("force"))},
+    ("camera", "localize"): {"target": (_REQUIRED, _optional_name("target"))},
+}
+
+
+def _bind(device: str, command: str, args: Mapping[str, Any]) -> dict[str, Any]:
+    """Check and convert command arguments against the signature; defaults fill the rest."""
+    signature = _SIGNATURES.get((device, command))
+    if signature is None:
+        commands = sorted(c for d, c in _SIGNATURES if d == device)
+        if not commands:
+            raise AdapterError(f"unknown device {device!r}; devices: robot, gripper, camera")
+        raise AdapterError(f"device {device!r} has no command {command!r}; commands: {commands}")
+    if not isinstance(args, Mapping):
+        raise AdapterError(f"arguments of {device}.{command} must be a mapping by name")
+    unknown = sorted(set(args) - set(signature))
+    if unknown:
+        raise AdapterError(
+            f"{device}.{command} has no parameter(s) {unknown}; parameters: {list(signature)}"
+        )
+    bound = {}
+    for name, (default, convert) in signature.items():
+        if name in args:
+            value = args[name]
+        elif default is _REQUIRED:
+            raise AdapterError(f"{device}.{command} needs the argument {name!r}")
+        else:
+            value = default
+        bound[name] = value if value is None else convert(value)
+    return bound
+
+
+class RobotView:
+    """Sensor values of the robot at the current tick (read lazily from the cell)."""
+
+    def __init__(self, cell: SimulatedCell) -> None:
+        self._cell = cell
+
+    @property
+    def tcp(self) -> pin.SE3:
+        return pin.SE3(self._cell.arm.tcp)
+
+    @property
+    def wrench(self) -> Wrench:
+        return Wrench.of(self._cell.wrist.wrench)
+
+    @property
+    def q(self) -> np.ndarray:
+        return self._cell.arm.q[:ARM_DOF].copy()
+
+    @property
+    def goalReached(self) -> bool:
+        return bool(self._cell.controller.reached(self._cell.arm))
+
+    @property
+    def travel(self) -> Vector3:
+        return Vector3.of(self._cell.arm.tcp.translation - self._cell.travel_origin)
+
+    @property
+    def turned(self) -> float:
+        return self._cell.turned
+
+
+class GripperView:
+    """Sensor values of the gripper at the current tick."""
+
+    def __init__(self, cell: SimulatedCell) -> None:
+        self._cell = cell
+
+    @property
+    def width(self) -> float:
+        return float(self._cell.plant.q[ARM_DOF] + self._cell.plant.q[ARM_DOF + 1])
+
+    @property
+    def done(self) -> bool:
+        cell = self._cell
+        settled = cell.time - cell.grip_start >= GRIPPER_SETTLE
+        return settled and float(np.max(np.abs(cell.plant.v[ARM_DOF:]))) < GRIPPER_REST_SPEED
+
+    @property
+    def holding(self) -> bool:
+        return self._cell.grip > 0 and self.done and self.width > GRIPPER_EMPTY_WIDTH
+
+
+class CameraView:
+    """Sensor values of the camera: ``done`` once a localisation result is available."""
+
+    def __init__(self, cell: SimulatedCell) -> None:
+        self._cell = cell
+
+    @property
+    def done(self) -> bool:
+        return self._cell.camera_done
+
+
+class LiveSnapshot:
+    """The snapshot stop predicates see inside the loop: reads the current tick's values."""
+
+    def __init__(self, cell: SimulatedCell) -> None:
+        self._cell = cell
+        self.robot = RobotView(cell)
+        self.gripper = GripperView(cell)
+        self.camera = CameraView(cell)
+
+    @property
+    def time(self) -> float:
+        return self._cell.time
+
+
+_SENSORS = {
+    "robot": ("tcp", "wrench", "q", "goalReached", "travel", "turned"),
+    "gripper": ("holding", "width", "done"),
+    "camera": ("done",),
+}
+
+
+class SimulatedCell:
+    """``runtime.contract.Adapter`` for one cell (LWR, parallel gripper, camera) on a plant."""
+
+    def __init__(
+        self,
+        plant: Plant,
+        scene: str,
+        *,
+        seed: int = 0,
+        perception_noise: tuple[float, float] = (0.0, 0.0),
+        recorder: Any = None,
+    ) -> None:
+        self.plant = plant
+        self.scene = scene
+        self.noise = (float(perception_noise[0]), float(perception_noise[1]))
+        self.rng = np.random.default_rng(seed)
+        self.recorder = recorder
+        self.arm = ArmState(load_robot())
+        self._ft_id = self.arm.model.getFrameId(FT_SITE)
+        self.wrist = self._make_wrist_sensor()
+        self.time = 0.0
+        self.grip = -OPEN_FORCE
+        self.grip_start = 0.0
+        self.camera_done = False
+        self.turned = 0.0
+        self._yaw = 0.0
+        self.travel_origin = np.zeros(3)
+        self._r0 = np.eye(3)
+        self._ft = pin.SE3.Identity()
+        self._live = LiveSnapshot(self)
+        self._sense()
+        self.controller: CartesianImpedance | JointImpedance = JointImpedance(
+            self.arm, READY_Q, np.array(DEFAULT_JOINT_STIFFNESS), np.array(DEFAULT_JOINT_DAMPING)
+        )
+        self._start_command()
+        for _ in range(round(SETTLE_TIME / DT)):
+            self._tick()
+        self.tare()
+        self.hold()
+
+    # -- the Adapter protocol ---------------------------------------------------------------
+
+    def devices(self) -> Mapping[str, str]:
+        return {"robot": "LWR", "gripper": "ParallelGripper", "camera": "Camera"}
+
+    def snapshot(self) -> SimpleNamespace:
+        """A frozen copy of every sensor value now."""
+        live = self._live
+        devices = {
+            name: SimpleNamespace(**{s: getattr(getattr(live, name), s) for s in sensors})
+            for name, sensors in _SENSORS.items()
+        }
+        return SimpleNamespace(time=self.time, **devices)
+
+    def execute(
+        self,
+        device: str,
+        command: str,
+        args: Mapping[str, Any],
+        stop: Sequence[StopCondition],
+        budget: float,
+    ) -> CommandResult:
+        bound = _bind(device, command, args)
+        if not (isinstance(budget, int | float) and budget >= 0 and math.isfinite(budget)):
+            raise AdapterError(f"budget must be a finite number of seconds >= 0, got {budget!r}")
+        settled, value = getattr(self, f"_{device}_{command}")(**bound)
+        live = self._live
+        end = self.time + budget - DT / 2
+        try:
+            while True:
+                self._tick()
+                if settled():
+                    for condition in stop:
+                        if condition.holds(live):
+                            return CommandResult(condition.name, value)
+                if self.time >= end:
+                    return CommandResult(TIMEOUT)
+        except AdapterError:
+            raise
+        except Exception as exc:
+            raise AdapterError(f"stop condition of {device}.{command} failed: {exc!r}") from exc
+        finally:
+            self.hold()
+
+    def hold(self) -> None:
+        """Hold the current pose (or configuration) with the impedance of the last command."""
+        c = self.controller
+        if isinstance(c, CartesianImpedance):
+            here = self.arm.tcp * c.task
+            self.controller = CartesianImpedance(
+                self.arm, here, c.task, c.stiffness, c.ratio, 0.1, 1.0
+            )
+        else:
+            self.controller = JointImpedance(self.arm, self.arm.q[:ARM_DOF], c.stiffness, c.ratio)
+
+    def close(self) -> None:
+        if self.recorder is not None:
+            self.recorder.close()
+            self.recorder = None
+
+    # -- ground truth -------------------------------------------------------------------------
+
+    def scene_pose(self, name: str) -> pin.SE3:
+        """True world pose of a scene body."""
+        model = self.plant.model
+        body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
+        if body < 0:
+            raise AdapterError(f"scene {self.scene!r} has no object {name!r}")
+        self.plant.sync()
+        data = self.plant.data
+        return pin.SE3(data.xmat[body].reshape(3, 3).copy(), data.xpos[body].copy())
+
+    def measurements(self) -> dict[str, Any]:
+        """Scene ground truth (e.g. screw depth) from the scene's hook, if it has one."""
+        self.plant.sync()
+        return _scene_measurements(self.scene, self.plant.model, self.plant.data)
+
+    def tare(self) -> None:
+        """Zero the wrist sensor: call only when the tool touches nothing."""
+        self.wrist.tare(self.plant.wrist(), self._ft)
+
+    # -- commands: each starts its command and returns (settled?, value) ------------------------
+
+    def _robot_moveCartesian(
+        self, goal, task, stiffness, damping, speed, angular_speed, ref
+    ) -> tuple[Callable[[], bool], None]:
+        if ref is not None:
+            goal = self.scene_pose(ref) * goal
+        task = pin.SE3.Identity() if task is None else task
+        self.controller = CartesianImpedance(
+            self.arm, goal, task, stiffness, damping, speed, angular_speed
+        )
+        self._start_command()
+        return _always, None
+
+    def _robot_moveJoint(self, q, stiffness, damping) -> tuple[Callable[[], bool], None]:
+        self.controller = JointImpedance(self.arm, q, stiffness, damping)
+        self._start_command()
+        return _always, None
+
+    def _gripper_open(self) -> tuple[Callable[[], bool], None]:
+        return self._grip(-OPEN_FORCE)
+
+    def _gripper_close(self, force: float) -> tuple[Callable[[], bool], None]:
+        return self._grip(force)
+
+    def _grip(self, force: float) -> tuple[Callable[[], bool], None]:
+        self.grip = force
+        self.grip_start = self.time
+        view = self._live.gripper
+        return (lambda: view.done), None
+
+    def _camera_localize(self, target: str) -> tuple[Callable[[], bool], pin.SE3]:
+        true = self.scene_pose(target)
+        sigma_p, sigma_r = self.noise
+        offset = self.rng.normal(0.0, sigma_p, 3)
+        axis = self.rng.normal(size=3)
+        angle = self.rng.normal(0.0, sigma_r)
+        axis /= np.linalg.norm(axis)
+        rotation = pin.exp3(angle * axis) @ true.rotation
+        self.camera_done = True
+        return _always, pin.SE3(rotation, true.translation + offset)
+
+    # -- the 1 kHz loop ------------------------------------------------------------------------
+
+    def _start_command(self) -> None:
+        self.travel_origin = self.arm.tcp.translation.copy()
+        self.turned = 0.0
+        self._yaw = 0.0
+        self._r0 = self.arm.tcp.rotation.copy()
+        self.camera_done = False
+
+    def _make_wrist_sensor(self) -> WristSensor:
+        """Load model of the hand subtree (mass, centre of mass in the ft frame) from MuJoCo."""
+        model, data = self.plant.model, self.plant.data
+        self.plant.sync()
+        hand = model.body(HAND_BODY).id
+        site = model.site(FT_SITE).id
+        rotation = data.site_xmat[site].reshape(3, 3)
+        com = rotation.T @ (data.subtree_com[hand] - data.site_xpos[site])
+        return WristSensor(float(model.body_subtreemass[hand]), com)
+
+    def _sense(self) -> None:
+        """Update kinematics and sensors from the plant state."""
+        arm = self.arm
+        arm.update(self.plant.q, self.plant.v)
+        pin.updateFramePlacement(arm.model, arm.data, self._ft_id)
+        self._ft = arm.data.oMf[self._ft_id]
+        self.wrist.update(self.plant.wrist(), self._ft, arm.tcp)
+        rel = self._r0.T @ arm.tcp.rotation
+        yaw = math.atan2(rel[1, 0], rel[0, 0])
+        self.turned += (yaw - self._yaw + math.pi) % (2 * math.pi) - math.pi
+        self._yaw = yaw
+
+    def _tick(self) -> None:
+        self.plant.step(self.controller.torque(self.arm), self.grip)
+        self.time += DT
+        self._sense()
+        if self.recorder is not None:
+            self.recorder.tick(self.time, self.plant)
+
+
+def _always() -> bool:
+    return True

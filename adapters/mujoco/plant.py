@@ -1,0 +1,78 @@
+"""MuJoCo physics under the device layer: one ``mj_step`` per 1 kHz control tick."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from adapters.control import DT
+from adapters.robot_model import (
+    ARM_DOF,
+    ARM_JOINTS,
+    FINGER_JOINTS,
+    FINGER_TRAVEL,
+    FT_SITE,
+    GRIPPER_APPROACH,
+    GRIPPER_GAIN,
+    GRIPPER_SPEED,
+    NV,
+    READY_Q,
+    scene_path,
+)
+
+
+class MujocoPlant:
+    """A scene simulated by MuJoCo with the timestep forced to the control period."""
+
+    def __init__(self, scene: str) -> None:
+        self.model = mujoco.MjModel.from_xml_path(str(scene_path(scene)))
+        self.model.opt.timestep = DT
+        self.data = mujoco.MjData(self.model)
+        joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
+        self._qadr = np.array([j.qposadr[0] for j in joints])
+        self._vadr = np.array([j.dofadr[0] for j in joints])
+        if not (np.all(np.diff(self._qadr) == 1) and np.all(np.diff(self._vadr) == 1)):
+            raise ValueError(f"robot joints of scene {scene!r} are not contiguous")
+        qa, va = int(self._qadr[0]), int(self._vadr[0])
+        actuators = [self.model.actuator(name).id for name in (*ARM_JOINTS, *FINGER_JOINTS)]
+        self._ctrl = int(actuators[0])
+        if actuators != list(range(self._ctrl, self._ctrl + NV)):
+            raise ValueError(f"robot actuators of scene {scene!r} are not contiguous")
+        self.q = self.data.qpos[qa : qa + NV]
+        self.v = self.data.qvel[va : va + NV]
+        self.q[:ARM_DOF] = READY_Q
+        self.q[ARM_DOF:] = FINGER_TRAVEL
+        mujoco.mj_forward(self.model, self.data)
+        sensor = self.model.sensor
+        self._force = int(sensor("ft_force").adr[0])
+        self._torque = int(sensor("ft_torque").adr[0])
+        self._site = self.model.site(FT_SITE).id
+        self._arm_ctrl = self.data.ctrl[self._ctrl : self._ctrl + ARM_DOF]
+        self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
+        self._raw = np.zeros(6)
+
+    def step(self, tau: np.ndarray, grip: float) -> None:
+        """Arm torques straight to the motors; each finger runs a force-capped speed servo.
+
+        The servo slows down near the end of travel, so an empty gripper does not press its
+        fingers into their (soft) joint limits.
+        """
+        self._arm_ctrl[:] = tau
+        target = 0.0 if grip > 0 else FINGER_TRAVEL
+        speed = np.clip(
+            GRIPPER_APPROACH * (target - self.q[ARM_DOF:]), -GRIPPER_SPEED, GRIPPER_SPEED
+        )
+        limit = abs(grip)
+        np.clip(GRIPPER_GAIN * (speed - self.v[ARM_DOF:]), -limit, limit, out=self._finger_ctrl)
+        mujoco.mj_step(self.model, self.data)
+
+    def wrist(self) -> np.ndarray:
+        """The force/torque sensors (site frame) rotated into world axes."""
+        rotation = self.data.site_xmat[self._site].reshape(3, 3)
+        sensordata = self.data.sensordata
+        self._raw[:3] = rotation @ sensordata[self._force : self._force + 3]
+        self._raw[3:] = rotation @ sensordata[self._torque : self._torque + 3]
+        return self._raw.copy()
+
+    def sync(self) -> None:
+        """``data`` is the simulation itself: always current."""

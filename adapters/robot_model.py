@@ -1,0 +1,68 @@
+"""Where the robot and scene models live, and the facts about the robot every module shares.
+
+Both adapters load the same MJCF: MuJoCo a scene file that includes ``lwr.xml``, Pinocchio
+``lwr.xml`` itself (its MJCF parser ignores ``<include>``). The Pinocchio model keeps the two
+finger slide joints, so its joint order equals MuJoCo's robot joints: j1..j7, finger_left,
+finger_right (``NV`` = 9); the controllers act on the first ``ARM_DOF`` joints.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+MODELS_DIR = Path(__file__).parent / "models"
+ROBOT_FILE = MODELS_DIR / "lwr.xml"
+
+ARM_DOF = 7
+NV = 9
+ARM_JOINTS = tuple(f"j{i}" for i in range(1, ARM_DOF + 1))
+FINGER_JOINTS = ("finger_left", "finger_right")
+FINGER_TRAVEL = 0.04
+"""Opening of one finger [m]; the gripper width is the sum of both finger joints."""
+
+TCP_SITE = "tcp"
+FT_SITE = "ft"
+HAND_BODY = "hand"
+
+READY_Q = np.array([0.0, 0.35, 0.0, 1.75, 0.0, np.pi - 2.1, 0.0])
+"""Ready pose: elbow up, TCP pointing straight down at about (0.49, 0, 0.32) m, above the table.
+
+j2 + j4 + j6 = pi makes the tool axis vertical; the TCP x axis points to -x of the world.
+"""
+
+_SCENE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+
+def scene_path(scene: str) -> Path:
+    """The MJCF file of a scene name (``empty``, ``screwing``, ``din_rail``, ...)."""
+    if not isinstance(scene, str) or not _SCENE_NAME.fullmatch(scene) or scene == "lwr":
+        raise ValueError(f"invalid scene name {scene!r}")
+    path = MODELS_DIR / f"{scene}.xml"
+    if not path.is_file():
+        known = sorted(p.stem for p in MODELS_DIR.glob("*.xml") if p.stem != "lwr")
+        raise ValueError(f"unknown scene {scene!r}; known scenes: {', '.join(known)}")
+    return path
+
+
+def load_robot() -> pin.Model:
+    """The Pinocchio model of the robot, arm joints first, then the two finger joints.
+
+    Pinocchio 4.1 converts slide-joint ranges as if they were angles (degrees), so the finger
+    limits are set here from ``FINGER_TRAVEL``.
+    """
+    model = pin.buildModelFromMJCF(str(ROBOT_FILE))
+    model.lowerPositionLimit[ARM_DOF:] = 0.0
+    model.upperPositionLimit[ARM_DOF:] = FINGER_TRAVEL
+    return model
+
+
+GRIPPER_SPEED = 0.1
+"""Finger speed [m/s] of the gripper's velocity servo; the grip force caps its effort."""
+GRIPPER_GAIN = 500.0
+"""Velocity-servo gain [N s/m] of one finger in the MuJoCo plant."""
+GRIPPER_APPROACH = 20.0
+"""Gain [1/s] from the distance to the end of travel to the finger speed set point."""

@@ -1,0 +1,61 @@
+"""The wrist force/torque signal as skills read it: tared, filtered, at the TCP, world axes.
+
+A plant reports the raw wrist reading: the wrench the arm (link7) exerts on the hand subtree
+(hand and fingers), at the ``ft`` site origin, in world axes. What a skill wants is the wrench
+the environment exerts on the tool. In static balance
+``raw + F_env + m g = 0``, so ``F_env = −raw − m g`` (and likewise for the torque of the load's
+weight about the sensor). The load model (mass and centre of mass of the hand subtree, known
+from the robot model) is removed on every tick, for every orientation of the hand; what is left
+(the fingers' small shift of the centre of mass, inertial forces at standstill = 0) is removed
+by an explicit ``tare()``, which the adapters call once after settling in the ready pose and
+which callers may repeat when they know the tool is free. The result is then shifted to the TCP
+and low-pass filtered (first order, ``CUTOFF_HZ``) against impact spikes of stiff contacts.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from adapters.control import DT
+
+CUTOFF_HZ = 40.0
+GRAVITY = np.array([0.0, 0.0, -9.81])
+
+
+class WristSensor:
+    """Turns raw wrist readings into the filtered environment wrench at the TCP."""
+
+    def __init__(self, load_mass: float, load_com: np.ndarray) -> None:
+        """``load_com`` is the centre of mass of the hand subtree in the ft site frame."""
+        self.load_weight = load_mass * GRAVITY
+        self.load_com = np.asarray(load_com, dtype=float)
+        self.offset = np.zeros(6)
+        self.wrench = np.zeros(6)
+        """Filtered wrench at the TCP in world axes: force [N] then torque [Nm]."""
+        tau = 1.0 / (2.0 * np.pi * CUTOFF_HZ)
+        self._alpha = DT / (tau + DT)
+        self._last = np.zeros(6)
+
+    def _environment(self, raw: np.ndarray, ft: pin.SE3, tcp: pin.SE3) -> np.ndarray:
+        """Unfiltered, tared environment wrench at the TCP in world axes."""
+        lever = ft.rotation @ self.load_com
+        env = -raw - self.offset
+        env[:3] -= self.load_weight
+        env[3:] -= np.cross(lever, self.load_weight)
+        env[3:] += np.cross(ft.translation - tcp.translation, env[:3])
+        return env
+
+    def update(self, raw: np.ndarray, ft: pin.SE3, tcp: pin.SE3) -> None:
+        """Feed one raw reading (see module docstring) with the poses of the ft site and TCP."""
+        self._last = self._environment(raw, ft, tcp)
+        self.wrench += self._alpha * (self._last - self.wrench)
+
+    def tare(self, raw: np.ndarray, ft: pin.SE3) -> None:
+        """Declare the tool free: the current residual becomes the zero of the sensor."""
+        lever = ft.rotation @ self.load_com
+        residual = -raw
+        residual[:3] -= self.load_weight
+        residual[3:] -= np.cross(lever, self.load_weight)
+        self.offset = residual
+        self.wrench[:] = 0.0
