@@ -1,0 +1,384 @@
+"""Abstract syntax of UML/P statecharts, LightRocks components and domain interfaces.
+
+The textX parse tree is converted into these frozen dataclasses so that every later stage
+(symbols, CoCos, printers, generators) works on plain, comparable values. Source positions
+take no part in equality: a model printed and parsed again compares equal to the original.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Position:
+    """Where a node starts in its file (1-based line and column)."""
+
+    file: str
+    line: int
+    column: int
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+NOWHERE = Position("<builtin>", 0, 0)
+
+
+def _position() -> Position:
+    return field(default=NOWHERE, compare=False, repr=False)
+
+
+# --- expressions -------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A number with an optional unit; ``value`` is already converted to SI."""
+
+    value: float
+    unit: str = ""
+    text: str = field(default="", compare=False)
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class BooleanLiteral:
+    value: bool
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class StringLiteral:
+    value: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class VectorLiteral:
+    elements: tuple[Expression, ...]
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Name:
+    name: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Member:
+    target: Expression
+    name: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Argument:
+    """A call argument; ``name`` is empty for positional arguments."""
+
+    value: Expression
+    name: str = ""
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Call:
+    function: Expression
+    arguments: tuple[Argument, ...]
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Index:
+    target: Expression
+    index: Expression
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Unary:
+    operator: str
+    operand: Expression
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Binary:
+    operator: str
+    left: Expression
+    right: Expression
+    position: Position = _position()
+
+
+Expression = (
+    (Quantity | BooleanLiteral | StringLiteral | VectorLiteral | Name | Member | Call | Index)
+    | Unary
+    | Binary
+)
+
+
+# --- statements --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Assignment:
+    target: Expression
+    value: Expression
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class ExpressionStatement:
+    expression: Expression
+    position: Position = _position()
+
+
+Statement = Assignment | ExpressionStatement
+
+
+# --- statecharts -------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Stereotype:
+    """``<<name>>`` or ``<<name="value">>``; ``value`` is None when no value is given."""
+
+    name: str
+    value: str | None = None
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Parameter:
+    type: str
+    name: str
+    default: Expression | None = None
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Condition:
+    """A named start or end condition; without an expression it is a pure entry/exit point."""
+
+    kind: str  # "start" | "end"
+    name: str
+    expression: Expression | None = None
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Action:
+    """``entry /``, ``exit /`` or ``do /`` with its statements."""
+
+    kind: str  # "entry" | "exit" | "do"
+    statements: tuple[Statement, ...]
+    block: bool = True
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Invariant:
+    expression: Expression
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Transition:
+    source: str
+    target: str
+    guard: Expression | None = None
+    stimulus: str = ""
+    stimulus_arguments: tuple[Expression, ...] = ()
+    action: tuple[Statement, ...] | None = None
+    postcondition: Expression | None = None
+    position: Position = _position()
+    source_position: Position = _position()
+    target_position: Position = _position()
+    stimulus_position: Position = _position()
+
+
+@dataclass(frozen=True)
+class State:
+    name: str
+    stereotypes: tuple[Stereotype, ...] = ()
+    modifiers: tuple[str, ...] = ()  # "initial", "final"
+    arguments: tuple[Argument, ...] = ()
+    invariant: Expression | None = None
+    body: tuple[Element, ...] | None = None
+    position: Position = _position()
+
+    @property
+    def is_initial(self) -> bool:
+        return "initial" in self.modifiers
+
+    @property
+    def is_final(self) -> bool:
+        return "final" in self.modifiers
+
+
+Element = Parameter | Condition | Action | Invariant | State | Transition
+
+
+@dataclass(frozen=True)
+class ParameterBlock:
+    """``parameters { … }`` — kept as a block so printing reproduces it."""
+
+    parameters: tuple[Parameter, ...]
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Statechart:
+    name: str
+    elements: tuple[Element | ParameterBlock, ...]
+    stereotypes: tuple[Stereotype, ...] = ()
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Import:
+    name: str
+    wildcard: bool = False
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class StatechartUnit:
+    """One ``.lr`` file: a package, its imports and exactly one statechart."""
+
+    package: str
+    imports: tuple[Import, ...]
+    statechart: Statechart
+    file: str = field(default="", compare=False)
+    package_position: Position = _position()
+
+
+# --- domain interfaces -------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class QuantityType:
+    """A scalar quantity; ``unit`` is empty for dimensionless numbers."""
+
+    name: str
+    unit: str = ""
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class VectorType:
+    """A fixed-size vector: either ``of`` one element type or one unit per element."""
+
+    name: str
+    element_type: str = ""
+    size: int = 0
+    units: tuple[str, ...] = ()
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Field:
+    type: str
+    name: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class StructureType:
+    name: str
+    fields: tuple[Field, ...]
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class CommandParameter:
+    type: str
+    name: str
+    default: Expression | None = None
+    low: Expression | None = None
+    high: Expression | None = None
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Command:
+    name: str
+    parameters: tuple[CommandParameter, ...]
+    returns: str = ""
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Sensor:
+    type: str
+    name: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Device:
+    name: str
+    members: tuple[Command | Sensor, ...]
+    stereotypes: tuple[Stereotype, ...] = ()
+    position: Position = _position()
+
+    @property
+    def commands(self) -> tuple[Command, ...]:
+        return tuple(m for m in self.members if isinstance(m, Command))
+
+    @property
+    def sensors(self) -> tuple[Sensor, ...]:
+        return tuple(m for m in self.members if isinstance(m, Sensor))
+
+
+@dataclass(frozen=True)
+class DeviceInstance:
+    name: str
+    type: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class SceneObject:
+    name: str
+    attributes: tuple[Parameter, ...] = ()
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Cell:
+    name: str
+    members: tuple[DeviceInstance | SceneObject, ...]
+    stereotypes: tuple[Stereotype, ...] = ()
+    position: Position = _position()
+
+    @property
+    def devices(self) -> tuple[DeviceInstance, ...]:
+        return tuple(m for m in self.members if isinstance(m, DeviceInstance))
+
+    @property
+    def objects(self) -> tuple[SceneObject, ...]:
+        return tuple(m for m in self.members if isinstance(m, SceneObject))
+
+
+Declaration = QuantityType | VectorType | StructureType | Device | Cell
+
+
+@dataclass(frozen=True)
+class DomainUnit:
+    """One ``.lrd`` file: a package, its imports and its declarations."""
+
+    package: str
+    imports: tuple[Import, ...]
+    declarations: tuple[Declaration, ...]
+    file: str = field(default="", compare=False)
+    package_position: Position = _position()
+
+
+Unit = StatechartUnit | DomainUnit
+
+
+def stereotype(stereotypes: tuple[Stereotype, ...], name: str) -> Stereotype | None:
+    """The stereotype called ``name``, if present."""
+    return next((s for s in stereotypes if s.name == name), None)

@@ -1,0 +1,205 @@
+"""Conversion of textX parse trees into the AST of :mod:`metamodel.ast`.
+
+Each grammar rule ``R`` is handled by a method ``rule_R``; a language subclasses
+:class:`Converter` to add the rules of its own fragment. Positions come from the character
+offsets textX records, turned into line and column with one bisect per node.
+"""
+
+from __future__ import annotations
+
+import bisect
+from typing import Any
+
+from metamodel import ast
+from metamodel.units import UnitError, lookup
+
+
+class Converter:
+    def __init__(self, text: str, file: str) -> None:
+        self.file = file
+        self._line_starts = [0] + [i + 1 for i, c in enumerate(text) if c == "\n"]
+
+    # -- infrastructure -------------------------------------------------------------------
+
+    def position(self, node: Any) -> ast.Position:
+        offset = getattr(node, "_tx_position", 0)
+        line = bisect.bisect_right(self._line_starts, offset)
+        return ast.Position(self.file, line, offset - self._line_starts[line - 1] + 1)
+
+    def convert(self, node: Any) -> Any:
+        return getattr(self, f"rule_{type(node).__name__}")(node)
+
+    def optional(self, node: Any) -> Any:
+        return None if node is None or node == "" else self.convert(node)
+
+    def many(self, nodes: list[Any]) -> tuple[Any, ...]:
+        return tuple(self.convert(n) for n in nodes)
+
+    # -- common ---------------------------------------------------------------------------
+
+    def stereotypes(self, node: Any) -> tuple[ast.Stereotype, ...]:
+        if not node:
+            return ()
+        return tuple(
+            ast.Stereotype(item.name, item.value if item.value != "" else None, self.position(item))
+            for item in node.items
+        )
+
+    def imports(self, nodes: list[Any]) -> tuple[ast.Import, ...]:
+        return tuple(ast.Import(n.name, bool(n.wildcard), self.position(n)) for n in nodes)
+
+    def package(self, node: Any) -> tuple[str, ast.Position]:
+        if not node:
+            return "", ast.Position(self.file, 1, 1)
+        return node.name, self.position(node)
+
+    # -- expressions ----------------------------------------------------------------------
+
+    def rule_Expression(self, node: Any) -> ast.Expression:
+        operands = [self.convert(operand) for operand in node.operands]
+        operators = list(node.operators)
+        if not operators:
+            return operands[0]
+        return _climb(operands, operators, self.position(node))
+
+    def rule_UnaryExpression(self, node: Any) -> ast.Expression:
+        operand = self.convert(node.operand)
+        if not node.operator:
+            return operand
+        if node.operator == "-" and isinstance(operand, ast.Quantity):
+            return ast.Quantity(-operand.value, operand.unit, "-" + operand.text, operand.position)
+        return ast.Unary(node.operator, operand, self.position(node))
+
+    def rule_PostfixExpression(self, node: Any) -> ast.Expression:
+        result = self.convert(node.primary)
+        for suffix in node.suffixes:
+            where = self.position(suffix)
+            kind = type(suffix).__name__
+            if kind == "MemberSuffix":
+                result = ast.Member(result, suffix.name, where)
+            elif kind == "CallSuffix":
+                result = ast.Call(result, self.many(suffix.arguments), result.position)
+            else:
+                result = ast.Index(result, self.convert(suffix.index), where)
+        return result
+
+    def rule_Argument(self, node: Any) -> ast.Argument:
+        return ast.Argument(self.convert(node.value), node.name or "", self.position(node))
+
+    def rule_QuantityLiteral(self, node: Any) -> ast.Quantity:
+        number = float(node.number)
+        unit = node.unit or ""
+        try:
+            value = number * lookup(unit).factor
+        except UnitError:
+            value = number
+        text = f"{node.number} {unit}" if unit else node.number
+        return ast.Quantity(value, unit, text, self.position(node))
+
+    def rule_BooleanLiteral(self, node: Any) -> ast.BooleanLiteral:
+        return ast.BooleanLiteral(node.value == "true", self.position(node))
+
+    def rule_StringLiteral(self, node: Any) -> ast.StringLiteral:
+        return ast.StringLiteral(node.value, self.position(node))
+
+    def rule_VectorLiteral(self, node: Any) -> ast.VectorLiteral:
+        return ast.VectorLiteral(self.many(node.elements), self.position(node))
+
+    def rule_ParenthesizedExpression(self, node: Any) -> ast.Expression:
+        return self.convert(node.expression)
+
+    def rule_NameExpression(self, node: Any) -> ast.Name:
+        return ast.Name(node.name, self.position(node))
+
+    # -- statements -----------------------------------------------------------------------
+
+    def rule_Assignment(self, node: Any) -> ast.Assignment:
+        return ast.Assignment(
+            self.convert(node.target), self.convert(node.value), self.position(node)
+        )
+
+    def rule_ExpressionStatement(self, node: Any) -> ast.ExpressionStatement:
+        return ast.ExpressionStatement(self.convert(node.expression), self.position(node))
+
+    def rule_Block(self, node: Any) -> tuple[ast.Statement, ...]:
+        return self.many(node.statements)
+
+    # -- statecharts ----------------------------------------------------------------------
+
+    def rule_Statechart(self, node: Any) -> ast.Statechart:
+        return ast.Statechart(
+            node.name,
+            self.many(node.elements),
+            self.stereotypes(node.stereotypes),
+            self.position(node),
+        )
+
+    def rule_State(self, node: Any) -> ast.State:
+        return ast.State(
+            node.name,
+            self.stereotypes(node.stereotypes),
+            tuple(node.modifiers),
+            self.many(node.arguments),
+            self.optional(node.invariant),
+            self.many(node.body.elements) if node.body else None,
+            self.position(node),
+        )
+
+    def rule_Action(self, node: Any) -> ast.Action:
+        if node.block:
+            return ast.Action(node.kind, self.convert(node.block), True, self.position(node))
+        return ast.Action(node.kind, (self.convert(node.statement),), False, self.position(node))
+
+    def rule_Invariant(self, node: Any) -> ast.Invariant:
+        return ast.Invariant(self.convert(node.expression), self.position(node))
+
+    def rule_Transition(self, node: Any) -> ast.Transition:
+        stimulus = node.stimulus
+        return ast.Transition(
+            node.source.name,
+            node.target.name,
+            self.optional(node.guard),
+            stimulus.name if stimulus else "",
+            self.many(stimulus.arguments) if stimulus else (),
+            self.convert(node.action) if node.action else None,
+            self.optional(node.postcondition),
+            self.position(node),
+            self.position(node.source),
+            self.position(node.target),
+            self.position(stimulus) if stimulus else ast.NOWHERE,
+        )
+
+
+PRECEDENCE = {
+    "||": 1,
+    "&&": 2,
+    "==": 3,
+    "!=": 3,
+    "<": 4,
+    "<=": 4,
+    ">": 4,
+    ">=": 4,
+    "+": 5,
+    "-": 5,
+    "*": 6,
+    "/": 6,
+    "%": 6,
+}
+
+
+def _climb(
+    operands: list[ast.Expression], operators: list[str], position: ast.Position
+) -> ast.Expression:
+    """Fold a flat operand/operator list into a left-associative tree by precedence."""
+    operands = list(operands)
+    operators = list(operators)
+
+    def parse(minimum: int) -> ast.Expression:
+        left = operands.pop(0)
+        while operators and PRECEDENCE[operators[0]] >= minimum:
+            operator = operators.pop(0)
+            right = parse(PRECEDENCE[operator] + 1)
+            left = ast.Binary(operator, left, right, getattr(left, "position", position))
+        return left
+
+    return parse(1)
