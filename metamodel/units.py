@@ -34,8 +34,14 @@ class Dimension:
     def __str__(self) -> str:
         if self.dimensionless:
             return "1"
-        up = [f"{b}^{e}" if e != 1 else b for b, e in zip(BASES, self.exponents) if e > 0]
-        down = [f"{b}^{-e}" if e != -1 else b for b, e in zip(BASES, self.exponents) if e < 0]
+        up = [
+            f"{b}^{e}" if e != 1 else b for b, e in zip(BASES, self.exponents, strict=True) if e > 0
+        ]
+        down = [
+            f"{b}^{-e}" if e != -1 else b
+            for b, e in zip(BASES, self.exponents, strict=True)
+            if e < 0
+        ]
         text = "·".join(up) or "1"
         return f"{text}/{'·'.join(down)}" if down else text
 
@@ -92,7 +98,7 @@ def known_units() -> list[str]:
 
 
 def lookup(unit: str) -> UnitInfo:
-    """Resolve ``sym`` or ``sym/sym`` (e.g. ``N/m``, ``Nm/rad``, ``m/s``) to factor and dimension."""
+    """Resolve ``sym`` or ``sym/sym`` (``N/m``, ``Nm/rad``, ``m/s``) to factor and dimension."""
     if not unit:
         return UnitInfo(1.0, ONE)
     numerator, _, denominator = unit.partition("/")
