@@ -60,9 +60,8 @@ def load_robot() -> pin.Model:
     return model
 
 
-GRIPPER_SPEED = 0.1
-"""Finger speed [m/s] of the gripper's velocity servo; the grip force caps its effort."""
-GRIPPER_GAIN = 500.0
-"""Velocity-servo gain [N s/m] of one finger in the MuJoCo plant."""
-GRIPPER_APPROACH = 20.0
-"""Gain [1/s] from the distance to the end of travel to the finger speed set point."""
+FINGER_DAMPING = 200.0
+"""Joint damping [N s/m] of each finger in lwr.xml: a grip force F moves a finger at F/200 m/s."""
+GRIPPER_BAND = 0.002
+"""Within this distance [m] of the end of travel the finger force fades out linearly, so an
+empty gripper does not press its fingers into their (soft) joint limits."""

@@ -12,9 +12,7 @@ from adapters.robot_model import (
     FINGER_JOINTS,
     FINGER_TRAVEL,
     FT_SITE,
-    GRIPPER_APPROACH,
-    GRIPPER_GAIN,
-    GRIPPER_SPEED,
+    GRIPPER_BAND,
     NV,
     READY_Q,
     scene_path,
@@ -52,18 +50,15 @@ class MujocoPlant:
         self._raw = np.zeros(6)
 
     def step(self, tau: np.ndarray, grip: float) -> None:
-        """Arm torques straight to the motors; each finger runs a force-capped speed servo.
+        """Arm torques straight to the motors; each finger pushes with the grip force.
 
-        The servo slows down near the end of travel, so an empty gripper does not press its
-        fingers into their (soft) joint limits.
+        The finger joint damping sets the finger speed; the force fades out within
+        GRIPPER_BAND of the end of travel (see robot_model).
         """
         self._arm_ctrl[:] = tau
         target = 0.0 if grip > 0 else FINGER_TRAVEL
-        speed = np.clip(
-            GRIPPER_APPROACH * (target - self.q[ARM_DOF:]), -GRIPPER_SPEED, GRIPPER_SPEED
-        )
-        limit = abs(grip)
-        np.clip(GRIPPER_GAIN * (speed - self.v[ARM_DOF:]), -limit, limit, out=self._finger_ctrl)
+        fade = np.clip((target - self.q[ARM_DOF:]) / GRIPPER_BAND, -1.0, 1.0)
+        np.multiply(abs(grip), fade, out=self._finger_ctrl)
         mujoco.mj_step(self.model, self.data)
 
     def wrist(self) -> np.ndarray:

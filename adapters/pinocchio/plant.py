@@ -1,0 +1,182 @@
+"""The fast twin: Pinocchio rigid-body dynamics with penalty contacts against static boxes.
+
+The arm is integrated with semi-implicit Euler at 1 kHz from ``M a = τ − h − damping·v + Jᵀf``
+(mass matrix and bias from Pinocchio, joint damping from the MJCF). The fingers are a
+first-order model: they move at the speed the finger damping of the MJCF gives the
+grip force and stop when
+they would press into a box. Contacts are the corners of the hand and finger boxes against
+the boxes welded to the world in the scene MJCF (spring-damper normal force, regularised
+Coulomb friction); the arm links, the floor plane and moving scene bodies are not collided.
+The wrist reading is quasi-static: the hand load's weight plus the contact forces.
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pinocchio as pin
+
+from adapters.control import DT
+from adapters.robot_model import (
+    ARM_DOF,
+    ARM_JOINTS,
+    FINGER_DAMPING,
+    FINGER_JOINTS,
+    FINGER_TRAVEL,
+    FT_SITE,
+    GRIPPER_BAND,
+    HAND_BODY,
+    NV,
+    READY_Q,
+    load_robot,
+    scene_path,
+)
+
+CONTACT_STIFFNESS = 2e4
+"""Normal penalty stiffness per contact point [N/m]."""
+CONTACT_DAMPING = 200.0
+FRICTION = 1.0
+FRICTION_SLIP = 1e-3
+"""Sliding speed [m/s] at which friction reaches the Coulomb limit (regularisation)."""
+GRAVITY = np.array([0.0, 0.0, -9.81])
+CONTACT_BODIES = (HAND_BODY, *FINGER_JOINTS)
+_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+
+
+class PinocchioPlant:
+    """A scene (read from the same MJCF) simulated with Pinocchio dynamics."""
+
+    def __init__(self, scene: str) -> None:
+        self.model = mujoco.MjModel.from_xml_path(str(scene_path(scene)))
+        self.data = mujoco.MjData(self.model)
+        joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
+        self._qadr = np.array([j.qposadr[0] for j in joints])
+        self._damping = np.array([self.model.dof_damping[j.dofadr[0]] for j in joints])
+        self.robot = load_robot()
+        self.robot_data = self.robot.createData()
+        self.q = np.concatenate((READY_Q, [FINGER_TRAVEL, FINGER_TRAVEL]))
+        self.v = np.zeros(NV)
+        self.sync()
+        self._ft_id = self.robot.getFrameId(FT_SITE)
+        hand = self.model.body(HAND_BODY).id
+        self._load = float(self.model.body_subtreemass[hand]) * GRAVITY
+        self._load_com = self._in_body(hand, self.data.subtree_com[hand])
+        self._boxes = self._static_boxes()
+        self._frames, self._points = self._contact_points()
+        self._contact = np.zeros(6)
+        """Environment wrench on the hand subtree at the ft site, world axes."""
+
+    def _in_body(self, body: int, world_point: np.ndarray) -> np.ndarray:
+        rotation = self.data.xmat[body].reshape(3, 3)
+        return rotation.T @ (world_point - self.data.xpos[body])
+
+    def _static_boxes(self) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """(centre, rotation, half sizes) of every box geom welded to the world."""
+        m, d = self.model, self.data
+        boxes = []
+        for g in range(m.ngeom):
+            welded = m.body_weldid[m.geom_bodyid[g]] == 0
+            if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX and welded:
+                boxes.append(
+                    (d.geom_xpos[g].copy(), d.geom_xmat[g].reshape(3, 3).copy(), m.geom_size[g])
+                )
+        return boxes
+
+    def _contact_points(self) -> tuple[list[int], list[np.ndarray]]:
+        """Pinocchio frame ids and, per frame, the box-geom corners in that frame (3 x n)."""
+        m = self.model
+        frames, points = [], []
+        for name in CONTACT_BODIES:
+            body = m.body(name).id
+            corners = []
+            for g in range(m.ngeom):
+                if m.geom_bodyid[g] == body and m.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX:
+                    rotation = np.zeros(9)
+                    mujoco.mju_quat2Mat(rotation, m.geom_quat[g])
+                    local = _CORNERS * m.geom_size[g]
+                    corners.append(local @ rotation.reshape(3, 3).T + m.geom_pos[g])
+            frames.append(self.robot.getFrameId(name, pin.BODY))
+            points.append(np.vstack(corners).T)
+        return frames, points
+
+    def step(self, tau: np.ndarray, grip: float) -> None:
+        """One DT: contacts, arm dynamics, then the first-order fingers."""
+        model, data = self.robot, self.robot_data
+        pin.framesForwardKinematics(model, data, self.q)
+        generalized = np.zeros(NV)
+        generalized[:ARM_DOF] = tau
+        generalized -= self._damping * self.v
+        blocked = self._apply_contacts(generalized)
+        mass = pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF]
+        mass = np.triu(mass) + np.triu(mass, 1).T
+        bias = pin.nonLinearEffects(model, data, self.q, self.v)[:ARM_DOF]
+        accel = np.linalg.solve(mass, generalized[:ARM_DOF] - bias)
+        self.v[:ARM_DOF] += DT * accel
+        self.q[:ARM_DOF] += DT * self.v[:ARM_DOF]
+        target = 0.0 if grip > 0 else FINGER_TRAVEL
+        fade = np.clip((target - self.q[ARM_DOF:]) / GRIPPER_BAND, -1.0, 1.0)
+        speed = abs(grip) / FINGER_DAMPING * fade
+        speed[blocked & (speed < 0)] = 0.0
+        self.v[ARM_DOF:] = speed
+        self.q[ARM_DOF:] += DT * speed
+
+    def _apply_contacts(self, generalized: np.ndarray) -> np.ndarray:
+        """Add contact forces to ``generalized``; return which fingers touch a box."""
+        data = self.robot_data
+        self._contact[:] = 0.0
+        blocked = np.zeros(2, dtype=bool)
+        ft = data.oMf[self._ft_id].translation
+        jacobians_ready = False
+        for index, (frame, local) in enumerate(zip(self._frames, self._points, strict=True)):
+            placement = data.oMf[frame]
+            world = placement.rotation @ local + placement.translation[:, None]
+            for centre, rotation, half in self._boxes:
+                inside = (rotation.T @ (world - centre[:, None])).T
+                depth = half - np.abs(inside)
+                hits = np.flatnonzero(np.all(depth > 0, axis=1))
+                if hits.size == 0:
+                    continue
+                if not jacobians_ready:
+                    pin.computeJointJacobians(self.robot, data, self.q)
+                    jacobians_ready = True
+                jacobian = pin.getFrameJacobian(self.robot, data, frame, pin.LOCAL_WORLD_ALIGNED)
+                for hit in hits:
+                    axis = int(np.argmin(depth[hit]))
+                    normal = rotation[:, axis] * np.sign(inside[hit, axis])
+                    point = world[:, hit]
+                    j_point = jacobian[:3] - pin.skew(point - placement.translation) @ jacobian[3:]
+                    velocity = j_point @ self.v
+                    force = self._contact_force(depth[hit, axis], normal, velocity)
+                    generalized += j_point.T @ force
+                    self._contact[:3] += force
+                    self._contact[3:] += np.cross(point - ft, force)
+                    if index > 0:
+                        blocked[index - 1] = True
+        return blocked
+
+    @staticmethod
+    def _contact_force(depth: float, normal: np.ndarray, velocity: np.ndarray) -> np.ndarray:
+        normal_speed = float(normal @ velocity)
+        pressure = max(CONTACT_STIFFNESS * depth - CONTACT_DAMPING * normal_speed, 0.0)
+        slip = velocity - normal_speed * normal
+        slip_speed = float(np.linalg.norm(slip))
+        friction = np.zeros(3)
+        if slip_speed > 0:
+            friction = -FRICTION * pressure * min(slip_speed / FRICTION_SLIP, 1.0) * slip
+            friction /= slip_speed
+        return pressure * normal + friction
+
+    def wrist(self) -> np.ndarray:
+        """Quasi-static reading: what link7 must exert to hold the load against contacts."""
+        placement = self.robot_data.oMf[self._ft_id]
+        lever = placement.rotation @ self._load_com
+        raw = -self._contact
+        raw[:3] -= self._load
+        raw[3:] -= np.cross(lever, self._load)
+        return raw
+
+    def sync(self) -> None:
+        """Copy the robot state into the MuJoCo data for ground truth and rendering."""
+        self.data.qpos[self._qadr] = self.q
+        mujoco.mj_kinematics(self.model, self.data)
+        mujoco.mj_comPos(self.model, self.data)

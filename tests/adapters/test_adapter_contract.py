@@ -1,0 +1,110 @@
+"""Both adapters implement runtime.contract.Adapter and reject bad input with clear errors."""
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from adapters.mujoco import MujocoAdapter
+from adapters.pinocchio import PinocchioAdapter
+from runtime.contract import Adapter, AdapterError, StopCondition, Vector3, Wrench
+
+DONE = StopCondition("done", lambda s: s.gripper.done)
+
+
+def test_is_an_adapter(adapter):
+    assert isinstance(adapter, Adapter)
+    assert adapter.devices() == {"robot": "LWR", "gripper": "ParallelGripper", "camera": "Camera"}
+
+
+def test_snapshot_has_every_sensor(adapter):
+    snap = adapter.snapshot()
+    assert snap.time == pytest.approx(adapter.time)
+    assert isinstance(snap.robot.tcp, pin.SE3)
+    assert isinstance(snap.robot.wrench, Wrench)
+    assert isinstance(snap.robot.wrench.torque.z, float)
+    assert snap.robot.q.shape == (7,)
+    assert isinstance(snap.robot.travel, Vector3)
+    assert isinstance(snap.robot.turned, float)
+    assert isinstance(snap.robot.goalReached, bool)
+    assert snap.gripper.width == pytest.approx(0.08, abs=1e-3)
+    assert snap.gripper.holding is False
+    assert snap.camera.done is False
+
+
+@pytest.mark.parametrize(
+    ("device", "command", "args", "message"),
+    [
+        ("arm", "moveCartesian", {}, "unknown device"),
+        ("robot", "fly", {}, "no command"),
+        ("robot", "moveJoint", {}, "needs the argument 'q'"),
+        ("robot", "moveJoint", {"q": [0.0] * 6}, "7 finite numbers"),
+        ("robot", "moveJoint", {"q": "up"}, "7"),
+        ("robot", "moveJoint", {"q": [0.0] * 7, "speed": 1}, "no parameter"),
+        ("robot", "moveCartesian", {"goal": [0, 0, 0]}, "pinocchio.SE3"),
+        ("robot", "moveCartesian", {"goal": pin.SE3.Identity(), "stiffness": [1] * 5}, "6"),
+        ("robot", "moveCartesian", {"goal": pin.SE3.Identity(), "speed": -1}, "positive"),
+        ("robot", "moveCartesian", {"goal": pin.SE3.Identity(), "ref": "nothing"}, "no object"),
+        ("gripper", "close", {"force": "hard"}, "number"),
+        ("camera", "localize", {"target": "unicorn"}, "no object"),
+    ],
+)
+def test_bad_commands_raise_adapter_errors(adapter, device, command, args, message):
+    before = adapter.snapshot().robot.q
+    with pytest.raises(AdapterError, match=message):
+        adapter.execute(device, command, args, [], 1.0)
+    assert np.allclose(adapter.snapshot().robot.q, before, atol=1e-3)
+
+
+def test_failing_stop_predicate_is_an_adapter_error(adapter):
+    broken = StopCondition("broken", lambda s: s.robot.nonsense > 0)
+    with pytest.raises(AdapterError, match="stop condition"):
+        adapter.execute("robot", "moveJoint", {"q": adapter.snapshot().robot.q}, [broken], 1.0)
+
+
+@pytest.mark.parametrize("kind", [MujocoAdapter, PinocchioAdapter])
+def test_unknown_scene_is_a_value_error(kind):
+    with pytest.raises(ValueError, match="unknown scene"):
+        kind("atlantis")
+
+
+def test_timeout_leaves_the_robot_holding_still(adapter):
+    tcp = adapter.snapshot().robot.tcp
+    goal = pin.SE3(tcp.rotation, tcp.translation + np.array([0.0, 0.2, 0.0]))
+    t0 = adapter.time
+    result = adapter.execute("robot", "moveCartesian", {"goal": goal}, [], budget=0.5)
+    assert result.outcome == "timeout"
+    assert adapter.time - t0 == pytest.approx(0.5, abs=1.5e-3)
+    here = adapter.snapshot().robot.tcp.translation
+    adapter.execute("robot", "moveCartesian", {"goal": adapter.snapshot().robot.tcp}, [], 0.5)
+    assert np.linalg.norm(adapter.snapshot().robot.tcp.translation - here) < 0.01
+
+
+def test_first_condition_in_order_wins(adapter):
+    stop = [StopCondition("first", lambda s: True), StopCondition("second", lambda s: True)]
+    result = adapter.execute("robot", "moveJoint", {"q": adapter.snapshot().robot.q}, stop, 1.0)
+    assert result.outcome == "first"
+
+
+def test_goal_relative_to_a_scene_object(adapter):
+    block = adapter.scene_pose("block")
+    above = pin.SE3(adapter.snapshot().robot.tcp.rotation, np.array([0.0, 0.02, 0.2]))
+    reached = StopCondition("reached", lambda s: s.robot.goalReached)
+    result = adapter.execute(
+        "robot", "moveCartesian", {"goal": above, "ref": "block"}, [reached], 3.0
+    )
+    assert result.outcome == "reached"
+    expected = (block * above).translation
+    assert np.linalg.norm(adapter.snapshot().robot.tcp.translation - expected) < 1e-3
+
+
+def test_gripper_closes_empty_and_opens(adapter):
+    assert adapter.execute("gripper", "close", {}, [DONE], 2.0).outcome == "done"
+    snap = adapter.snapshot()
+    assert snap.gripper.width < 0.002
+    assert snap.gripper.holding is False
+    assert adapter.execute("gripper", "open", {}, [DONE], 2.0).outcome == "done"
+    assert adapter.snapshot().gripper.width == pytest.approx(0.08, abs=1e-3)
+
+
+def test_measurements_is_a_dict(adapter):
+    assert isinstance(adapter.measurements(), dict)
