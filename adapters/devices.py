@@ -7,7 +7,6 @@ the two adapters behave alike by construction. See docs/adapters.md for the cont
 
 from __future__ import annotations
 
-import importlib
 import math
 from collections.abc import Callable, Mapping, Sequence
 from types import SimpleNamespace
@@ -67,18 +66,9 @@ class Plant(Protocol):
         """Make ``data`` reflect the current state (poses of bodies and sites)."""
         ...
 
-
-MeasureHook = Callable[[str, mujoco.MjModel, mujoco.MjData], dict[str, Any]]
-
-
-def _scene_measurements(scene: str, model: mujoco.MjModel, data: mujoco.MjData) -> dict:
-    """Scene-specific ground truth from the optional ``adapters.scenes.measurements`` hook."""
-    try:
-        scenes = importlib.import_module("adapters.scenes")
-    except ModuleNotFoundError:
-        return {}
-    hook: MeasureHook | None = getattr(scenes, "measurements", None)
-    return dict(hook(scene, model, data)) if hook is not None else {}
+    def measurements(self) -> dict[str, Any]:
+        """Scene ground truth (see adapters.scene_hooks)."""
+        ...
 
 
 def _vector(name: str, size: int, *, positive: bool = False) -> Callable[[Any], np.ndarray]:
@@ -375,8 +365,7 @@ class SimulatedCell:
 
     def measurements(self) -> dict[str, Any]:
         """Scene ground truth (e.g. screw depth) from the scene's hook, if it has one."""
-        self.plant.sync()
-        return _scene_measurements(self.scene, self.plant.model, self.plant.data)
+        return self.plant.measurements()
 
     def tare(self) -> None:
         """Zero the wrist sensor: call only when the tool touches nothing."""

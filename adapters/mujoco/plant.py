@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import mujoco
 import numpy as np
 
+from adapters import scene_hooks
 from adapters.control import DT
 from adapters.robot_model import (
     ARM_DOF,
@@ -48,6 +51,8 @@ class MujocoPlant:
         self._arm_ctrl = self.data.ctrl[self._ctrl : self._ctrl + ARM_DOF]
         self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
         self._raw = np.zeros(6)
+        self._scene = scene
+        self._scene_step = scene_hooks.step_hook(scene)
 
     def step(self, tau: np.ndarray, grip: float) -> None:
         """Arm torques straight to the motors; each finger pushes with the grip force.
@@ -59,6 +64,8 @@ class MujocoPlant:
         target = 0.0 if grip > 0 else FINGER_TRAVEL
         fade = np.clip((target - self.q[ARM_DOF:]) / GRIPPER_BAND, -1.0, 1.0)
         np.multiply(abs(grip), fade, out=self._finger_ctrl)
+        if self._scene_step is not None:
+            self._scene_step(self.model, self.data)
         mujoco.mj_step(self.model, self.data)
 
     def wrist(self) -> np.ndarray:
@@ -71,3 +78,6 @@ class MujocoPlant:
 
     def sync(self) -> None:
         """``data`` is the simulation itself: always current."""
+
+    def measurements(self) -> dict[str, Any]:
+        return scene_hooks.measurements(self._scene, self.model, self.data)

@@ -8,14 +8,20 @@ they would press into a box. Contacts are the corners of the hand and finger box
 the boxes welded to the world in the scene MJCF (spring-damper normal force, regularised
 Coulomb friction); the arm links, the floor plane and moving scene bodies are not collided.
 The wrist reading is quasi-static: the hand load's weight plus the contact forces.
+Scenes with moving parts (screw, terminals) act through their analytic fixture twin from
+``adapters.scenes`` (see adapters.scene_hooks): it is stepped with the TCP pose and returns the
+wrench it exerts at the TCP; closing on a graspable part stops the fingers at GRASP_WIDTH.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import mujoco
 import numpy as np
 import pinocchio as pin
 
+from adapters import scene_hooks
 from adapters.control import DT
 from adapters.robot_model import (
     ARM_DOF,
@@ -28,6 +34,7 @@ from adapters.robot_model import (
     HAND_BODY,
     NV,
     READY_Q,
+    TCP_SITE,
     load_robot,
     scene_path,
 )
@@ -40,6 +47,8 @@ FRICTION_SLIP = 1e-3
 """Sliding speed [m/s] at which friction reaches the Coulomb limit (regularisation)."""
 GRAVITY = np.array([0.0, 0.0, -9.81])
 CONTACT_BODIES = (HAND_BODY, *FINGER_JOINTS)
+GRASP_WIDTH = 0.02
+"""Width [m] at which the twin's fingers stop on a part of the scene's fixture twin."""
 _CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
 
 
@@ -47,6 +56,7 @@ class PinocchioPlant:
     """A scene (read from the same MJCF) simulated with Pinocchio dynamics."""
 
     def __init__(self, scene: str) -> None:
+        self._scene = scene
         self.model = mujoco.MjModel.from_xml_path(str(scene_path(scene)))
         self.data = mujoco.MjData(self.model)
         joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
@@ -64,6 +74,10 @@ class PinocchioPlant:
         self._boxes = self._static_boxes()
         self._frames, self._points = self._contact_points()
         self._contact = np.zeros(6)
+        self._tcp_id = self.robot.getFrameId(TCP_SITE)
+        self._fixture = scene_hooks.fixture_twin(scene)
+        self._grasp = 0.0
+        """Finger position [m] where the fingers stop on a grasped fixture part (0: none)."""
         """Environment wrench on the hand subtree at the ft site, world axes."""
 
     def _in_body(self, body: int, world_point: np.ndarray) -> np.ndarray:
@@ -107,18 +121,39 @@ class PinocchioPlant:
         generalized[:ARM_DOF] = tau
         generalized -= self._damping * self.v
         blocked = self._apply_contacts(generalized)
+        if self._fixture is not None:
+            self._apply_fixture(generalized, grip)
         mass = pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF]
         mass = np.triu(mass) + np.triu(mass, 1).T
         bias = pin.nonLinearEffects(model, data, self.q, self.v)[:ARM_DOF]
         accel = np.linalg.solve(mass, generalized[:ARM_DOF] - bias)
         self.v[:ARM_DOF] += DT * accel
         self.q[:ARM_DOF] += DT * self.v[:ARM_DOF]
-        target = 0.0 if grip > 0 else FINGER_TRAVEL
+        target = self._grasp if grip > 0 else FINGER_TRAVEL
         fade = np.clip((target - self.q[ARM_DOF:]) / GRIPPER_BAND, -1.0, 1.0)
         speed = abs(grip) / FINGER_DAMPING * fade
         speed[blocked & (speed < 0)] = 0.0
         self.v[ARM_DOF:] = speed
         self.q[ARM_DOF:] += DT * speed
+
+    def _apply_fixture(self, generalized: np.ndarray, grip: float) -> None:
+        """Step the scene's fixture twin; add its wrench at the TCP to joints and wrist."""
+        tcp = self.robot_data.oMf[self._tcp_id]
+        if grip <= 0:
+            self._grasp = 0.0
+        elif self._grasp == 0.0 and self._fixture.graspable(tcp.translation):
+            self._grasp = GRASP_WIDTH / 2
+        closed_on_part = self._grasp > 0 and bool(np.all(self.q[ARM_DOF:] < self._grasp + 1e-3))
+        wrench = self._fixture.step(DT, tcp.translation, tcp.rotation, closed_on_part)
+        if not np.any(wrench):
+            return
+        jacobian = pin.computeFrameJacobian(
+            self.robot, self.robot_data, self.q, self._tcp_id, pin.LOCAL_WORLD_ALIGNED
+        )
+        generalized += jacobian.T @ wrench
+        ft = self.robot_data.oMf[self._ft_id].translation
+        self._contact[:3] += wrench[:3]
+        self._contact[3:] += wrench[3:] + np.cross(tcp.translation - ft, wrench[:3])
 
     def _apply_contacts(self, generalized: np.ndarray) -> np.ndarray:
         """Add contact forces to ``generalized``; return which fingers touch a box."""
@@ -180,3 +215,9 @@ class PinocchioPlant:
         self.data.qpos[self._qadr] = self.q
         mujoco.mj_kinematics(self.model, self.data)
         mujoco.mj_comPos(self.model, self.data)
+
+    def measurements(self) -> dict[str, Any]:
+        if self._fixture is not None:
+            return dict(self._fixture.measurements())
+        self.sync()
+        return scene_hooks.measurements(self._scene, self.model, self.data)
