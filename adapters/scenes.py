@@ -1,0 +1,336 @@
+"""The physical scenes of the case studies: measurements, per-step hooks and analytic twins.
+
+Scenes are MJCF files in ``adapters/models`` that include ``lwr.xml``. A scene is named by its
+file stem (``"screwing"``, ``"din_rail"``); every function here also accepts the file name or a
+path. This module is the only place that knows the scene-specific joint and body names:
+
+- :func:`measurements` turns the MuJoCo state into scene values (``screw_depth``,
+  ``terminal1_latched``, ...) that adapters publish to stop conditions and tests.
+- :func:`scene_step` is the per-physics-step hook of a scene (the screw thread's depth-dependent
+  friction). Adapters call it before every ``mj_step``; it costs about a microsecond.
+- :class:`ScrewTwin` and :class:`RailTwin` are kinematic stand-ins of the two fixtures for the
+  Pinocchio twin, which has no contact physics (see docs/scenes.md).
+
+Conventions: SI units, world frame, z up; the arm base is at the world origin.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+# --- screwing cell (adapters/models/screwing.xml) -------------------------------------------
+
+SCREW_PITCH = 0.003
+"""Thread pitch [m per turn]: 1.5 mm of depth per 180 deg turn."""
+SCREW_TARGET_DEPTH = 0.012
+"""Depth [m] at which the head seats on the cube (bottom-out, 8 turns of 180 deg)."""
+THREAD_TORQUE_START = 0.05
+"""Thread friction torque [Nm] at depth 0."""
+THREAD_TORQUE_END = 0.20
+"""Thread friction torque [Nm] at the target depth (it grows linearly in between)."""
+SCREW_AXIS_XY = (0.55, 0.0)
+"""Screw axis position on the table [m]."""
+SCREW_HEAD_TOP_Z = 0.184
+"""Height [m] of the screw head's top face at depth 0 (head is 22 mm high, 20 mm across)."""
+
+# --- top-hat rail cell (adapters/models/din_rail.xml) ---------------------------------------
+
+TERMINALS = ("terminal1", "terminal2", "terminal3")
+RAIL_X = 0.60
+"""Rail centre line [m]; the rail runs along the world y axis."""
+RAIL_LIP_TOP_Z = 0.1075
+"""Height [m] of the rail lips' top face: a latched terminal's housing rests there."""
+RAIL_HALF_LENGTH = 0.12
+TERMINAL_Y = (-0.05, 0.0, 0.05)
+"""y [m] of the terminals in the tray, and of their target slots on the rail."""
+TRAY_X = 0.45
+TERMINAL_TRAY_Z = 0.1101
+"""Height [m] of a terminal's origin (housing underside) standing in the tray."""
+TERMINAL_HEIGHT = 0.04
+SNAP_FORCE = 34.0
+"""Designed snap-through force [N] of a terminal (measured: see docs/scenes.md)."""
+LATCH_ENGAGED = 0.00075
+"""A latch deflected less than this [m] has its catch under the lip (overlap is 1.5 mm)."""
+
+
+def scene_key(scene_name: str) -> str:
+    """Normalise ``"screwing"``, ``"screwing.xml"`` or a path to the scene's file stem."""
+    return os.path.splitext(os.path.basename(scene_name))[0]
+
+
+def thread_torque(depth: float) -> float:
+    """Friction torque [Nm] of the screw thread at ``depth`` [m] (linear, clipped)."""
+    s = min(max(depth / SCREW_TARGET_DEPTH, 0.0), 1.0)
+    return THREAD_TORQUE_START + (THREAD_TORQUE_END - THREAD_TORQUE_START) * s
+
+
+def scene_step(scene_name: str, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+    """Per-step hook; adapters call it before every ``mj_step`` of the scene (1 kHz hot path).
+
+    Screwing: sets the screw hinge's ``dof_frictionloss`` to :func:`thread_torque` of the
+    current depth, so the torque needed to turn the screw grows as it goes in. Without this
+    hook the thread still works, with the constant start friction of the MJCF file.
+    Other scenes: nothing to do.
+    """
+    if scene_name != "screwing" and scene_key(scene_name) != "screwing":
+        return
+    depth = float(data.qpos[model.jnt_qposadr[model.joint("screw_slide").id]])
+    model.dof_frictionloss[model.jnt_dofadr[model.joint("screw_hinge").id]] = thread_torque(depth)
+
+
+def measurements(
+    scene_name: str, model: mujoco.MjModel, data: mujoco.MjData
+) -> dict[str, float | bool]:
+    """Scene values for stop conditions, environment updates and tests.
+
+    screwing: ``screw_depth`` [m] advance into the cube since the start, ``screw_angle`` [rad]
+    turned since the start (positive = tightening), ``screw_bottomed`` (head seated),
+    ``thread_torque`` [Nm] the current thread friction.
+    din_rail: ``terminalN_latched`` (on the rail, upright, housing on the lips and both catches
+    under the lips), ``terminalN_height`` [m] of the housing underside above the lips' top, and
+    ``terminals_latched`` (how many are latched).
+    Unknown scenes: an empty dict.
+    """
+    key = scene_key(scene_name)
+    if key == "screwing":
+        return _screwing_measurements(model, data)
+    if key == "din_rail":
+        return _rail_measurements(model, data)
+    return {}
+
+
+def _screwing_measurements(model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, float | bool]:
+    depth = float(data.qpos[model.jnt_qposadr[model.joint("screw_slide").id]])
+    angle = float(data.qpos[model.jnt_qposadr[model.joint("screw_hinge").id]])
+    return {
+        "screw_depth": depth,
+        "screw_angle": angle,
+        "screw_bottomed": depth >= SCREW_TARGET_DEPTH - 1e-4,
+        "thread_torque": thread_torque(depth),
+    }
+
+
+def terminal_latched(model: mujoco.MjModel, data: mujoco.MjData, terminal: str) -> bool:
+    """Whether ``terminal`` sits latched on the rail (see :func:`measurements`)."""
+    pos = data.body(terminal).xpos
+    rail = data.body("rail").xpos
+    upright = float(data.body(terminal).xmat[8]) > 0.995
+    on_rail = abs(pos[0] - rail[0]) < 0.0015 and abs(pos[1] - rail[1]) < RAIL_HALF_LENGTH - 0.005
+    seated = abs(pos[2] - (rail[2] + 0.0075)) < 0.0006
+    catches = all(
+        float(data.qpos[model.jnt_qposadr[model.joint(f"{terminal}_latch_{side}").id]])
+        < LATCH_ENGAGED
+        for side in ("l", "r")
+    )
+    return bool(upright and on_rail and seated and catches)
+
+
+def _rail_measurements(model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, float | bool]:
+    values: dict[str, float | bool] = {}
+    rail_top = float(data.body("rail").xpos[2]) + 0.0075
+    count = 0
+    for terminal in TERMINALS:
+        latched = terminal_latched(model, data, terminal)
+        count += latched
+        values[f"{terminal}_latched"] = latched
+        values[f"{terminal}_height"] = float(data.body(terminal).xpos[2]) - rail_top
+    values["terminals_latched"] = float(count)
+    return values
+
+
+# --- analytic twins for the Pinocchio adapter -----------------------------------------------
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+def _tightening_yaw(rotation: np.ndarray) -> float:
+    """Rotation of a frame about the world -z axis (the screw axis), from its x axis."""
+    return -math.atan2(float(rotation[1, 0]), float(rotation[0, 0]))
+
+
+@dataclass
+class ScrewTwin:
+    """Kinematic screw for dry runs: a gripped screw turns with the TCP and advances.
+
+    Interface (shared with :class:`RailTwin`): ``reset()``, ``graspable(tcp_position)``,
+    ``step(dt, tcp_position, tcp_rotation, holding) -> wrench`` and ``measurements()``;
+    ``tcp_position`` (3,) and ``tcp_rotation`` (3, 3) in the world frame,
+    ``holding`` whether the gripper is closed on something; the result is the wrench (force,
+    torque; world axes, at the TCP) that the fixture exerts on the gripper. The screw counts
+    as gripped when the gripper holds with the TCP within 1 cm of the head's axis and inside
+    the head's height. While gripped, the screw angle follows the TCP's rotation about the
+    screw axis, the depth is ``pitch * angle / 2 pi``, and the screw resists with the thread
+    torque (opposing the turn; smoothed around zero speed); past bottom-out the screw stops
+    and the reaction grows with ``stop_stiffness`` [Nm/rad] times the extra turn.
+    """
+
+    pitch: float = SCREW_PITCH
+    target_depth: float = SCREW_TARGET_DEPTH
+    axis_xy: tuple[float, float] = SCREW_AXIS_XY
+    head_top_z: float = SCREW_HEAD_TOP_Z
+    stop_stiffness: float = 50.0
+    angle: float = 0.0
+    _gripped: bool = field(default=False, repr=False)
+    _yaw: float = field(default=0.0, repr=False)
+    _turn: float = field(default=0.0, repr=False)
+
+    @property
+    def max_angle(self) -> float:
+        return 2.0 * math.pi * self.target_depth / self.pitch
+
+    @property
+    def depth(self) -> float:
+        return self.pitch * self.angle / (2.0 * math.pi)
+
+    def reset(self) -> None:
+        self.angle, self._gripped, self._turn = 0.0, False, 0.0
+
+    def graspable(self, tcp_position: np.ndarray) -> bool:
+        """Whether a gripper closing at ``tcp_position`` would hold the screw head."""
+        dx = float(tcp_position[0]) - self.axis_xy[0]
+        dy = float(tcp_position[1]) - self.axis_xy[1]
+        top = self.head_top_z - self.depth
+        return math.hypot(dx, dy) < 0.01 and top - 0.022 <= float(tcp_position[2]) <= top + 0.005
+
+    def step(
+        self, dt: float, tcp_position: np.ndarray, tcp_rotation: np.ndarray, holding: bool
+    ) -> np.ndarray:
+        wrench = np.zeros(6)
+        yaw = _tightening_yaw(np.asarray(tcp_rotation))
+        if not holding:
+            self._gripped = False
+            return wrench
+        if not self._gripped:
+            if not self.graspable(np.asarray(tcp_position)):
+                return wrench
+            self._gripped, self._yaw, self._turn = True, yaw, self.angle
+        self._turn += _wrap(yaw - self._yaw)
+        self._yaw = yaw
+        old = self.angle
+        self.angle = min(max(self._turn, -math.pi), self.max_angle)
+        speed = (self.angle - old) / dt if dt > 0 else 0.0
+        resist = thread_torque(self.depth) * math.tanh(speed / 0.05)
+        resist += self.stop_stiffness * max(self._turn - self.max_angle, 0.0)
+        # a tightening turn is about world -z; the screw pushes back about +z
+        wrench[5] = resist
+        return wrench
+
+    def measurements(self) -> dict[str, float | bool]:
+        return {
+            "screw_depth": self.depth,
+            "screw_angle": self.angle,
+            "screw_bottomed": self.depth >= self.target_depth - 1e-4,
+            "thread_torque": thread_torque(self.depth),
+        }
+
+
+@dataclass
+class _Terminal:
+    position: np.ndarray
+    latched: bool = False
+    carried: bool = False
+    offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
+
+
+@dataclass
+class RailTwin:
+    """Kinematic terminals and rail for dry runs (same ``step`` interface as ScrewTwin).
+
+    A closed gripper whose TCP is within 8 mm (x, y) and 12 mm (z) of a terminal's grasp point
+    (25 mm above its underside, centre) carries that terminal rigidly. Over the rail, pushing
+    a carried terminal down meets the snap-fit: the resisting force rises linearly to
+    ``snap_force`` over the 1.5 mm ramp, falls to the ``friction`` plateau for the next
+    1 mm, and the terminal latches when its underside is 0.1 mm above the lips; pushing on
+    a latched terminal meets the rail (``seat_stiffness`` N/m). A latched terminal stays when
+    the gripper opens and cannot be pulled off; a terminal released elsewhere stays where it
+    is (no gravity in the twin).
+    """
+
+    snap_force: float = SNAP_FORCE
+    friction: float = 4.5
+    seat_stiffness: float = 2.0e5
+    terminals: dict[str, _Terminal] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not self.terminals:
+            self.reset()
+
+    def reset(self) -> None:
+        self.terminals = {
+            name: _Terminal(np.array([TRAY_X, y, TERMINAL_TRAY_Z]))
+            for name, y in zip(TERMINALS, TERMINAL_Y, strict=True)
+        }
+
+    @staticmethod
+    def _near(term: _Terminal, tcp: np.ndarray) -> bool:
+        near = np.abs(tcp - (term.position + np.array([0.0, 0.0, 0.025])))
+        return bool(near[0] < 0.008 and near[1] < 0.008 and near[2] < 0.012)
+
+    def graspable(self, tcp_position: np.ndarray) -> bool:
+        """Whether a gripper closing at ``tcp_position`` would hold a terminal."""
+        tcp = np.asarray(tcp_position, dtype=float)
+        return any(self._near(term, tcp) for term in self.terminals.values())
+
+    def _resistance(self, height: float) -> float:
+        """Upward force [N] of the rail on a terminal whose underside is ``height`` above it."""
+        if height >= 0.0026:
+            return 0.0
+        if height >= 0.0011:
+            return self.snap_force * (0.0026 - height) / 0.0015
+        if height >= 0.0001:
+            return self.friction
+        return self.seat_stiffness * max(-height, 0.0)
+
+    def step(
+        self, dt: float, tcp_position: np.ndarray, tcp_rotation: np.ndarray, holding: bool
+    ) -> np.ndarray:
+        tcp = np.asarray(tcp_position, dtype=float)
+        wrench = np.zeros(6)
+        for term in self.terminals.values():
+            if not holding:
+                term.carried = False
+                continue
+            if not term.carried:
+                if self._near(term, tcp):
+                    term.carried, term.offset = True, term.position - tcp
+                continue
+            wanted = tcp + term.offset
+            over_rail = abs(wanted[0] - RAIL_X) < 0.003 and abs(wanted[1]) < RAIL_HALF_LENGTH
+            if not over_rail:
+                term.position = wanted
+                continue
+            height = float(wanted[2]) - RAIL_LIP_TOP_Z
+            if not term.latched and height < 0.0001:
+                term.latched = True
+            if term.latched:  # held down by the lips, held up by the catches
+                term.position = np.array([RAIL_X, wanted[1], RAIL_LIP_TOP_Z])
+                wrench[2] -= self.seat_stiffness * height
+            else:
+                term.position = wanted
+                wrench[2] += self._resistance(height)
+        return wrench
+
+    def measurements(self) -> dict[str, float | bool]:
+        values: dict[str, float | bool] = {}
+        for name, term in self.terminals.items():
+            values[f"{name}_latched"] = term.latched
+            values[f"{name}_height"] = float(term.position[2]) - RAIL_LIP_TOP_Z
+        values["terminals_latched"] = float(sum(t.latched for t in self.terminals.values()))
+        return values
+
+
+def make_twin(scene_name: str) -> ScrewTwin | RailTwin | None:
+    """The analytic twin of a scene's fixture, or None for scenes without one."""
+    key = scene_key(scene_name)
+    if key == "screwing":
+        return ScrewTwin()
+    if key == "din_rail":
+        return RailTwin()
+    return None

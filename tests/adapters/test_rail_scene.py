@@ -1,0 +1,149 @@
+"""Physics of the top-hat rail cell (adapters/models/din_rail.xml) and its analytic twin.
+
+Fixture tests push a terminal with a "virtual gripper": a wrench on the terminal body that
+keeps it centred and upright (like the arm's Cartesian impedance) and pushes it down with a
+force ramp. The arm is held up by gravity compensation so that it stays out of the way.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+
+from adapters import scenes
+
+SCENE = Path(scenes.__file__).parent / "models" / "din_rail.xml"
+
+
+class Cell:
+    """The rail scene with a virtual gripper on one terminal."""
+
+    def __init__(self, terminal: str = "terminal2") -> None:
+        self.model = mujoco.MjModel.from_xml_path(str(SCENE))
+        self.data = mujoco.MjData(self.model)
+        self.terminal = terminal
+        self.body = self.model.body(terminal).id
+        free = self.model.joint(terminal)
+        self.qadr, self.vadr = int(free.qposadr[0]), int(free.dofadr[0])
+        self.arm_dofs = [int(self.model.joint(f"j{i}").dofadr[0]) for i in range(1, 8)]
+        mujoco.mj_forward(self.model, self.data)
+
+    def place_over_rail(self, height: float = 0.0028) -> None:
+        """Put the terminal upright over its rail slot, ``height`` above the latched pose."""
+        y = scenes.TERMINAL_Y[scenes.TERMINALS.index(self.terminal)]
+        self.data.qpos[self.qadr : self.qadr + 7] = [
+            scenes.RAIL_X,
+            y,
+            scenes.RAIL_LIP_TOP_Z + height,
+            1,
+            0,
+            0,
+            0,
+        ]
+        self.target = np.array([scenes.RAIL_X, y])
+        mujoco.mj_forward(self.model, self.data)
+
+    @property
+    def height(self) -> float:
+        return float(self.data.xpos[self.body][2]) - scenes.RAIL_LIP_TOP_Z
+
+    def values(self) -> dict[str, float | bool]:
+        return scenes.measurements("din_rail", self.model, self.data)
+
+    def step(self, push: float | None = None) -> None:
+        """One step; ``push`` [N, down positive] holds and pushes, None lets go."""
+        d = self.data
+        d.qfrc_applied[self.arm_dofs] = d.qfrc_bias[self.arm_dofs]
+        wrench = np.zeros(6)
+        if push is not None:
+            pos, vel = d.xpos[self.body], d.qvel[self.vadr : self.vadr + 6]
+            wrench[:2] = 2000.0 * (self.target - pos[:2]) - 14.0 * vel[:2]
+            wrench[2] = -push
+            tilt = np.zeros(3)
+            mujoco.mju_quat2Vel(tilt, d.xquat[self.body], 1.0)
+            spin = d.xmat[self.body].reshape(3, 3) @ vel[3:]
+            wrench[3:] = -0.5 * tilt - 0.004 * spin
+        d.xfrc_applied[self.body] = wrench
+        scenes.scene_step("din_rail", self.model, d)
+        mujoco.mj_step(self.model, d)
+
+    def ramp(self, rate: float, until: float) -> float | None:
+        """Push with a force rising at ``rate`` N/s up to ``until`` N; the force at the snap."""
+        snap = None
+        for i in range(round(until / rate / self.model.opt.timestep)):
+            force = rate * i * self.model.opt.timestep
+            self.step(force)
+            if snap is None and self.height < 0.0002:
+                snap = force
+        return snap
+
+
+def test_scene_loads_with_named_bodies_and_terminals_rest_in_the_tray() -> None:
+    cell = Cell()
+    for body in ("table", "rail", "tray", *scenes.TERMINALS):
+        assert cell.model.body(body).id >= 0
+    start = np.array([cell.data.body(t).xpos.copy() for t in scenes.TERMINALS])
+    for _ in range(500):
+        cell.step()
+    end = np.array([cell.data.body(t).xpos.copy() for t in scenes.TERMINALS])
+    assert np.max(np.abs(end - start)) < 5e-4
+    assert all(cell.data.body(t).xmat[8] > 0.999 for t in scenes.TERMINALS)
+    assert start[:, 2] == pytest.approx(scenes.TERMINAL_TRAY_Z, abs=5e-4)
+    assert cell.values()["terminals_latched"] == 0
+
+
+def test_terminal_snaps_on_near_the_design_force_and_stays_latched() -> None:
+    cell = Cell()
+    cell.place_over_rail()
+    snap = cell.ramp(rate=40.0, until=45.0)
+    print(f"snap-through force: {snap:.1f} N")
+    assert snap is not None
+    assert snap == pytest.approx(scenes.SNAP_FORCE, rel=0.15)
+    assert 28.0 <= snap <= 40.0
+    for _ in range(500):  # let go
+        cell.step()
+    values = cell.values()
+    assert values["terminal2_latched"]
+    assert not values["terminal1_latched"] and not values["terminal3_latched"]
+    assert abs(values["terminal2_height"]) < 3e-4
+    cell.data.xfrc_applied[cell.body, 2] = 15.0  # pull up moderately: the catches hold
+    for _ in range(500):
+        cell.data.qfrc_applied[cell.arm_dofs] = cell.data.qfrc_bias[cell.arm_dofs]
+        mujoco.mj_step(cell.model, cell.data)
+    assert cell.values()["terminal2_latched"]
+    assert cell.height < 3e-4
+
+
+def test_terminal_pushed_below_the_snap_force_does_not_latch() -> None:
+    cell = Cell("terminal1")
+    cell.place_over_rail()
+    cell.ramp(rate=40.0, until=20.0)
+    for _ in range(300):
+        cell.step(20.0)
+    assert not cell.values()["terminal1_latched"]
+    assert cell.height > 0.001  # still riding on the ramps
+    for _ in range(500):
+        cell.step()
+    assert not cell.values()["terminal1_latched"]
+
+
+def test_rail_twin_snaps_and_holds() -> None:
+    twin = scenes.RailTwin()
+    down = np.diag([1.0, -1.0, -1.0])
+    grasp = np.array([scenes.TRAY_X, 0.0, scenes.TERMINAL_TRAY_Z + 0.025])
+    assert twin.graspable(grasp)
+    twin.step(0.001, grasp, down, holding=True)
+    over = np.array([scenes.RAIL_X, 0.0, scenes.RAIL_LIP_TOP_Z + 0.004 + 0.025])
+    twin.step(0.001, over, down, holding=True)
+    forces = []
+    for i in range(500):  # move down 5 mm
+        tcp = over - np.array([0.0, 0.0, 1e-5 * i])
+        forces.append(twin.step(0.001, tcp, down, holding=True)[2])
+    assert max(forces[:390]) == pytest.approx(scenes.SNAP_FORCE, rel=0.05)
+    assert twin.measurements()["terminal2_latched"]
+    twin.step(0.001, tcp, down, holding=False)
+    assert twin.measurements()["terminal2_latched"]
+    assert twin.measurements()["terminals_latched"] == 1
