@@ -12,6 +12,7 @@ import numpy as np
 import pinocchio as pin
 
 from adapters.robot_model import ARM_DOF, NV, TCP_SITE
+from adapters.vec import symmetrize_upper
 
 DT = 0.001
 SLOW_EVERY = 10
@@ -27,6 +28,7 @@ REST_ANGULAR = 0.02
 REST_JOINT = 0.02
 
 _ZEROS = np.zeros(NV)
+_LOWER = np.tril_indices(ARM_DOF, -1)
 
 
 class ArmState:
@@ -63,7 +65,7 @@ class ArmState:
         self.bias = pin.rnea(model, data, self.q, self.v, _ZEROS)[:ARM_DOF]
         if self._tick % SLOW_EVERY == 0:
             mass = pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF]
-            mass = np.triu(mass) + np.triu(mass, 1).T
+            mass = symmetrize_upper(mass.copy(), _LOWER)
             self.mass_inv = np.linalg.inv(mass)
             self.mass_diag = np.diag(mass).copy()
         self._tick += 1
@@ -121,6 +123,9 @@ class CartesianImpedance:
         self.elapsed = 0.0
         self.final_error = (np.inf, np.inf)
         self._slow_tick = 0
+        self._offset = not task.isIdentity()
+        self._world = np.zeros((3, 3))
+        self._wrench_local = np.zeros((3, 2))
 
     def _refresh_slow_terms(self, arm: ArmState, jac: np.ndarray, rotation: np.ndarray) -> None:
         """Damping from Λ and the dynamically consistent null-space projector."""
@@ -135,33 +140,41 @@ class CartesianImpedance:
         """Joint torques of the arm for this tick; advances the set point by one DT."""
         s = 1.0 if self.duration <= 0 else min(self.elapsed / self.duration, 1.0)
         self.elapsed += DT
-        p_set = self._p0 + s * self._dp
-        r_set = self._r0 @ pin.exp3(s * self._dr)
         moving = s < 1.0
+        r_set = self._r0 @ pin.exp3(s * self._dr) if moving else self.goal.rotation
 
-        frame = arm.tcp * self.task
-        rot, pos = frame.rotation, frame.translation
-        jac = arm.jacobian.copy()
-        jac[:3] -= pin.skew(pos - arm.tcp.translation) @ jac[3:]
+        if self._offset:
+            frame = arm.tcp * self.task
+            rot, pos = frame.rotation, frame.translation
+            jac = arm.jacobian.copy()
+            jac[:3] -= pin.skew(pos - arm.tcp.translation) @ jac[3:]
+            twist = jac @ arm.v[:ARM_DOF]
+        else:
+            rot, pos = arm.tcp.rotation, arm.tcp.translation
+            jac, twist = arm.jacobian, arm.twist
         if self._slow_tick % SLOW_EVERY == 0:
             self._refresh_slow_terms(arm, jac, rot)
         self._slow_tick += 1
 
-        twist = jac @ arm.v[:ARM_DOF]
-        e_pos = rot.T @ (p_set - pos)
+        # columns: position error, linear and angular error velocity; rotated to task axes
+        world = self._world
+        world[:, 0] = self._p0 + s * self._dp - pos
+        world[:, 1] = -twist[:3]
+        world[:, 2] = -twist[3:]
+        if moving:
+            world[:, 1] += self._v_set
+            world[:, 2] += self._w_set
+        local = rot.T @ world
         e_rot = pin.log3(rot.T @ r_set)
         if moving:
-            e_vel = rot.T @ (self._v_set - twist[:3])
-            e_ang = rot.T @ (self._w_set - twist[3:])
             self.final_error = (np.inf, np.inf)
         else:
-            e_vel = -rot.T @ twist[:3]
-            e_ang = -rot.T @ twist[3:]
-            self.final_error = (float(np.linalg.norm(e_pos)), float(np.linalg.norm(e_rot)))
+            self.final_error = (float(np.linalg.norm(local[:, 0])), float(np.linalg.norm(e_rot)))
         k, d = self.stiffness, self.damping
-        wrench = np.concatenate(
-            (rot @ (k[:3] * e_pos + d[:3] * e_vel), rot @ (k[3:] * e_rot + d[3:] * e_ang))
-        )
+        wrench_local = self._wrench_local
+        wrench_local[:, 0] = k[:3] * local[:, 0] + d[:3] * local[:, 1]
+        wrench_local[:, 1] = k[3:] * e_rot + d[3:] * local[:, 2]
+        wrench = (rot @ wrench_local).T.ravel()
         posture = NULLSPACE_STIFFNESS * (self.posture - arm.q[:ARM_DOF])
         posture -= NULLSPACE_DAMPING * arm.v[:ARM_DOF]
         return jac.T @ wrench + arm.bias + self.nullspace @ posture

@@ -18,6 +18,7 @@ import numpy as np
 import pinocchio as pin
 
 from adapters.control import DT
+from adapters.vec import cross
 
 CUTOFF_HZ = 40.0
 GRAVITY = np.array([0.0, 0.0, -9.81])
@@ -42,8 +43,8 @@ class WristSensor:
         lever = ft.rotation @ self.load_com
         env = -raw - self.offset
         env[:3] -= self.load_weight
-        env[3:] -= np.cross(lever, self.load_weight)
-        env[3:] += np.cross(ft.translation - tcp.translation, env[:3])
+        env[3:] -= cross(lever, self.load_weight)
+        env[3:] += cross(ft.translation - tcp.translation, env[:3])
         return env
 
     def update(self, raw: np.ndarray, ft: pin.SE3, tcp: pin.SE3) -> None:
@@ -56,6 +57,6 @@ class WristSensor:
         lever = ft.rotation @ self.load_com
         residual = -raw
         residual[:3] -= self.load_weight
-        residual[3:] -= np.cross(lever, self.load_weight)
+        residual[3:] -= cross(lever, self.load_weight)
         self.offset = residual
         self.wrench[:] = 0.0

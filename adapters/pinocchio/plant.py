@@ -38,6 +38,7 @@ from adapters.robot_model import (
     load_robot,
     scene_path,
 )
+from adapters.vec import cross, symmetrize_upper
 
 CONTACT_STIFFNESS = 2e4
 """Normal penalty stiffness per contact point [N/m]."""
@@ -49,6 +50,9 @@ GRAVITY = np.array([0.0, 0.0, -9.81])
 CONTACT_BODIES = (HAND_BODY, *FINGER_JOINTS)
 GRASP_WIDTH = 0.02
 """Width [m] at which the twin's fingers stop on a part of the scene's fixture twin."""
+REACH = 0.2
+"""Radius [m] around the hand origin that holds every contact point (broad phase)."""
+_LOWER = np.tril_indices(ARM_DOF, -1)
 _CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
 
 
@@ -123,8 +127,7 @@ class PinocchioPlant:
         blocked = self._apply_contacts(generalized)
         if self._fixture is not None:
             self._apply_fixture(generalized, grip)
-        mass = pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF]
-        mass = np.triu(mass) + np.triu(mass, 1).T
+        mass = symmetrize_upper(pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF], _LOWER)
         bias = pin.nonLinearEffects(model, data, self.q, self.v)[:ARM_DOF]
         accel = np.linalg.solve(mass, generalized[:ARM_DOF] - bias)
         self.v[:ARM_DOF] += DT * accel
@@ -153,19 +156,27 @@ class PinocchioPlant:
         generalized += jacobian.T @ wrench
         ft = self.robot_data.oMf[self._ft_id].translation
         self._contact[:3] += wrench[:3]
-        self._contact[3:] += wrench[3:] + np.cross(tcp.translation - ft, wrench[:3])
+        self._contact[3:] += wrench[3:] + cross(tcp.translation - ft, wrench[:3])
 
     def _apply_contacts(self, generalized: np.ndarray) -> np.ndarray:
         """Add contact forces to ``generalized``; return which fingers touch a box."""
         data = self.robot_data
         self._contact[:] = 0.0
         blocked = np.zeros(2, dtype=bool)
+        hand = data.oMf[self._frames[0]].translation
+        near = [
+            box
+            for box in self._boxes
+            if np.all(np.abs(box[1].T @ (hand - box[0])) < box[2] + REACH)
+        ]
+        if not near:
+            return blocked
         ft = data.oMf[self._ft_id].translation
         jacobians_ready = False
         for index, (frame, local) in enumerate(zip(self._frames, self._points, strict=True)):
             placement = data.oMf[frame]
             world = placement.rotation @ local + placement.translation[:, None]
-            for centre, rotation, half in self._boxes:
+            for centre, rotation, half in near:
                 inside = (rotation.T @ (world - centre[:, None])).T
                 depth = half - np.abs(inside)
                 hits = np.flatnonzero(np.all(depth > 0, axis=1))
@@ -184,7 +195,7 @@ class PinocchioPlant:
                     force = self._contact_force(depth[hit, axis], normal, velocity)
                     generalized += j_point.T @ force
                     self._contact[:3] += force
-                    self._contact[3:] += np.cross(point - ft, force)
+                    self._contact[3:] += cross(point - ft, force)
                     if index > 0:
                         blocked[index - 1] = True
         return blocked
@@ -207,7 +218,7 @@ class PinocchioPlant:
         lever = placement.rotation @ self._load_com
         raw = -self._contact
         raw[:3] -= self._load
-        raw[3:] -= np.cross(lever, self._load)
+        raw[3:] -= cross(lever, self._load)
         return raw
 
     def sync(self) -> None:
