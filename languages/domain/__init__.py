@@ -1,1 +1,31 @@
-"""LightRocks domain package."""
+"""The domain language: value types, devices and cells (``.lrd``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from languages.domain.cocos import COCOS
+from languages.domain.syntax import parse_domain
+from metamodel import ast
+from workbench.languages import Language
+
+
+def _declarations(unit: ast.DomainUnit) -> list[tuple[str, Any]]:
+    return [(declaration.name, declaration) for declaration in unit.declarations]
+
+
+def _format(text: str, file: str) -> str:
+    from languages.domain.printer import format_domain_text
+
+    return format_domain_text(text, file)
+
+
+LANGUAGE = Language(
+    name="domain",
+    extensions=(".lrd",),
+    parse=parse_domain,
+    format=_format,
+    declarations=_declarations,
+    cocos=COCOS,
+    description="robot domain interfaces: value types, devices, cells",
+)

@@ -1,0 +1,130 @@
+"""Context conditions of domain interfaces: names, types, defaults and safe ranges."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from languages.domain.types import BUILTIN_TYPES, QuantityT, Types, VectorT, compatible, describe
+from metamodel import ast
+from metamodel.units import UnitError, lookup
+from workbench.cocos import coco
+from workbench.diagnostics import Severity, did_you_mean
+from workbench.workspace import Loaded
+
+Finding = tuple[ast.Position, str, str]
+
+
+def _domain_units(context: object) -> Iterator[Loaded]:
+    for loaded in context.workspace.loaded_units():
+        if isinstance(loaded.unit, ast.DomainUnit):
+            yield loaded
+
+
+def _types(context: object) -> Types:
+    return context.cache.setdefault("domain-types", Types(context.workspace))
+
+
+def _typed_members(unit: ast.DomainUnit) -> Iterator[tuple[str, ast.Position]]:
+    """Every type name a declaration uses, with where it is used."""
+    for declaration in unit.declarations:
+        if isinstance(declaration, ast.VectorType) and declaration.element_type:
+            yield declaration.element_type, declaration.position
+        elif isinstance(declaration, ast.StructureType):
+            yield from ((f.type, f.position) for f in declaration.fields)
+        elif isinstance(declaration, ast.Device):
+            for member in declaration.members:
+                if isinstance(member, ast.Sensor):
+                    yield member.type, member.position
+                else:
+                    yield from ((p.type, p.position) for p in member.parameters)
+                    if member.returns:
+                        yield member.returns, member.position
+        elif isinstance(declaration, ast.Cell):
+            yield from ((d.type, d.position) for d in declaration.devices)
+            for obj in declaration.objects:
+                yield from ((a.type, a.position) for a in obj.attributes)
+
+
+@coco("LR0401", Severity.ERROR, "types used by domain declarations resolve")
+def domain_types_resolve(context: object) -> Iterator[Finding]:
+    types = _types(context)
+    for loaded in _domain_units(context):
+        for name, position in _typed_members(loaded.unit):
+            if types.resolve(loaded, name) is None:
+                candidates = [*BUILTIN_TYPES, *context.workspace.scope(loaded)]
+                yield position, f"unknown type '{name}'", did_you_mean(name, candidates)
+
+
+@coco("LR0402", Severity.ERROR, "members of a device or cell have unique names")
+def unique_members(context: object) -> Iterator[Finding]:
+    for loaded in _domain_units(context):
+        for declaration in loaded.unit.declarations:
+            members = getattr(declaration, "members", None) or getattr(declaration, "fields", ())
+            seen: set[str] = set()
+            for member in members:
+                if member.name in seen:
+                    yield member.position, f"'{member.name}' is declared twice", ""
+                seen.add(member.name)
+
+
+@coco("LR0403", Severity.ERROR, "units of quantity and vector types are known")
+def type_units_known(context: object) -> Iterator[Finding]:
+    for loaded in _domain_units(context):
+        for declaration in loaded.unit.declarations:
+            units = ()
+            if isinstance(declaration, ast.QuantityType) and declaration.unit:
+                units = (declaration.unit,)
+            elif isinstance(declaration, ast.VectorType):
+                units = declaration.units
+            for unit in units:
+                try:
+                    lookup(unit)
+                except UnitError as error:
+                    hint = did_you_mean(unit, error.suggestions)
+                    yield declaration.position, f"unknown unit '{unit}'", hint
+
+
+@coco("LR0404", Severity.ERROR, "command defaults and safe ranges fit the parameter type")
+def command_defaults_fit(context: object) -> Iterator[Finding]:
+    types = _types(context)
+    for loaded in _domain_units(context):
+        for declaration in loaded.unit.declarations:
+            if not isinstance(declaration, ast.Device):
+                continue
+            for command in declaration.commands:
+                for parameter in command.parameters:
+                    declared = types.resolve(loaded, parameter.type)
+                    if not isinstance(declared, QuantityT | VectorT):
+                        continue
+                    values = (parameter.default, parameter.low, parameter.high)
+                    for value in values:
+                        actual = _literal_type(value)
+                        if actual is not None and not _fits(declared, actual):
+                            yield (
+                                value.position,
+                                f"'{parameter.name}' expects {describe(declared)}",
+                                "",
+                            )
+
+
+def _literal_type(value: ast.Expression | None) -> QuantityT | VectorT | None:
+    if isinstance(value, ast.Quantity):
+        try:
+            return QuantityT(value.unit, lookup(value.unit).dimension)
+        except UnitError:
+            return None
+    if isinstance(value, ast.VectorLiteral):
+        elements = tuple(_literal_type(e) for e in value.elements)
+        if all(e is not None for e in elements):
+            return VectorT("vector", elements)
+    return None
+
+
+def _fits(declared: QuantityT | VectorT, actual: QuantityT | VectorT) -> bool:
+    """A range bound may be one scalar for every element of a vector."""
+    if isinstance(declared, VectorT) and isinstance(actual, QuantityT):
+        return all(compatible(e, actual) for e in declared.elements)
+    return compatible(declared, actual)
+
+
+COCOS = (domain_types_resolve, unique_members, type_units_known, command_defaults_fit)

@@ -1,0 +1,33 @@
+"""The shared analysis of one check run: resolved components and their typing, built once."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+from languages.lightrocks.model import ModelSet
+from languages.lightrocks.typing import Typing
+from workbench.check import CheckContext
+from workbench.workspace import Workspace
+
+
+@dataclass
+class Analysis:
+    context: CheckContext
+
+    @property
+    def workspace(self) -> Workspace:
+        return self.context.workspace
+
+    @cached_property
+    def models(self) -> ModelSet:
+        return ModelSet(self.context.workspace, self.context.diagnostics)
+
+    @cached_property
+    def typing(self) -> Typing:
+        return Typing(self.models)
+
+
+def analysis(context: CheckContext) -> Analysis:
+    """The analysis of this run, created by the first CoCo that asks for it."""
+    return context.cache.setdefault("lightrocks", Analysis(context))

@@ -1,0 +1,263 @@
+"""The resolved model of LightRocks components: extension applied, references resolved.
+
+A :class:`Region` is the content of a statechart or of a composite state: parameters,
+start/end conditions, states, transitions and actions. ``<<extends>>`` merges the base's
+region under the derived one (same name or same source and stimulus overrides);
+``<<import>>`` makes a state an instance of another component. Everything here is built
+once per check and shared by the CoCos and the generators.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+from metamodel import ast
+from workbench.diagnostics import Diagnostics, did_you_mean
+from workbench.workspace import Loaded, Workspace
+
+LAYERS = ("task", "skill", "action")
+BUILTIN_OUTCOMES = ("error", "timeout", "preempted")
+
+
+@dataclass
+class StateInfo:
+    state: ast.State
+    imported: Component | None = None
+    region: Region | None = None
+
+    @property
+    def name(self) -> str:
+        return self.state.name
+
+    @property
+    def outcomes(self) -> tuple[str, ...] | None:
+        """Outcomes this state can end with, or None for a simple state left by events."""
+        if self.imported is not None:
+            return self.imported.region.outcomes
+        if self.region is not None and self.region.outcomes:
+            return self.region.outcomes
+        return None
+
+
+@dataclass
+class Region:
+    name: str
+    position: ast.Position
+    loaded: Loaded
+    parameters: dict[str, ast.Parameter] = field(default_factory=dict)
+    conditions: dict[str, ast.Condition] = field(default_factory=dict)
+    states: dict[str, StateInfo] = field(default_factory=dict)
+    transitions: list[ast.Transition] = field(default_factory=list)
+    actions: list[ast.Action] = field(default_factory=list)
+    invariants: list[ast.Invariant] = field(default_factory=list)
+    parent: Region | None = None
+
+    @property
+    def start_conditions(self) -> list[ast.Condition]:
+        return [c for c in self.conditions.values() if c.kind == "start"]
+
+    @property
+    def end_conditions(self) -> list[ast.Condition]:
+        return [c for c in self.conditions.values() if c.kind == "end"]
+
+    @property
+    def outcomes(self) -> tuple[str, ...]:
+        finals = [s.name for s in self.states.values() if s.state.is_final]
+        return tuple(c.name for c in self.end_conditions) + tuple(finals)
+
+    def regions(self) -> list[Region]:
+        """This region and every composite-state region inside it, depth first."""
+        found = [self]
+        for info in self.states.values():
+            if info.region is not None:
+                found += info.region.regions()
+        return found
+
+
+@dataclass
+class Component:
+    """One statechart with its extension resolved."""
+
+    qualified_name: str
+    unit: ast.StatechartUnit
+    loaded: Loaded
+    region: Region
+    base: Component | None = None
+
+    @property
+    def statechart(self) -> ast.Statechart:
+        return self.unit.statechart
+
+    @property
+    def name(self) -> str:
+        return self.statechart.name
+
+    @cached_property
+    def layers(self) -> list[ast.Stereotype]:
+        return [s for s in self.statechart.stereotypes if s.name in LAYERS]
+
+    @property
+    def layer(self) -> str | None:
+        layers = self.layers
+        if layers:
+            return layers[0].name
+        return self.base.layer if self.base is not None else None
+
+
+class ModelSet:
+    """All components of a workspace, built on demand and cached by qualified name."""
+
+    def __init__(self, workspace: Workspace, diagnostics: Diagnostics) -> None:
+        self.workspace = workspace
+        self.diagnostics = diagnostics
+        self._components: dict[str, Component | None] = {}
+        self._building: set[str] = set()
+        self.references: list[tuple[str, str, str, ast.Position]] = []
+
+    @property
+    def components(self) -> list[Component]:
+        for loaded in self.workspace.loaded_units():
+            if isinstance(loaded.unit, ast.StatechartUnit):
+                self.component(_qualified(loaded.unit))
+        return [c for c in self._components.values() if c is not None]
+
+    def component(self, qualified_name: str) -> Component | None:
+        if qualified_name in self._components:
+            return self._components[qualified_name]
+        if qualified_name in self._building:
+            return None  # a cycle: reported by the cycle CoCo, broken here
+        symbol = self.workspace.lookup(qualified_name)
+        if symbol is None or not isinstance(symbol.node, ast.Statechart):
+            return None
+        self._building.add(qualified_name)
+        unit = symbol.loaded.unit
+        base = self._referenced(symbol.loaded, unit.statechart.stereotypes, "extends")
+        region = self._region(
+            unit.statechart.name,
+            unit.statechart.position,
+            unit.statechart.elements,
+            symbol.loaded,
+            base.region if base else None,
+            None,
+            qualified_name,
+        )
+        component = Component(qualified_name, unit, symbol.loaded, region, base)
+        self._building.discard(qualified_name)
+        self._components[qualified_name] = component
+        return component
+
+    def resolve_statechart(self, loaded: Loaded, name: str) -> Component | None:
+        symbol = self.workspace.resolve(loaded, name)
+        if symbol is None or not isinstance(symbol.node, ast.Statechart):
+            return None
+        return self.component(symbol.qualified_name)
+
+    def _referenced(
+        self, loaded: Loaded, stereotypes: tuple[ast.Stereotype, ...], kind: str, owner: str = ""
+    ) -> Component | None:
+        reference = ast.stereotype(stereotypes, kind)
+        if reference is None:
+            return None
+        if not reference.value:
+            self.diagnostics.error(
+                reference.position, "LR0104", f"<<{kind}>> needs a statechart name"
+            )
+            return None
+        symbol = self.workspace.resolve(loaded, reference.value)
+        if symbol is None or not isinstance(symbol.node, ast.Statechart):
+            candidates = [
+                n
+                for n, s in self.workspace.scope(loaded).items()
+                if isinstance(s.node, ast.Statechart)
+            ]
+            self.diagnostics.error(
+                reference.position,
+                "LR0104",
+                f"<<{kind}>> target '{reference.value}' does not resolve to a statechart",
+                did_you_mean(reference.value.rpartition(".")[2], candidates),
+            )
+            return None
+        source = owner or _qualified(loaded.unit)
+        self.references.append((source, symbol.qualified_name, kind, reference.position))
+        return self.component(symbol.qualified_name)
+
+    def _region(
+        self,
+        name: str,
+        position: ast.Position,
+        elements: tuple,
+        loaded: Loaded,
+        base: Region | None,
+        parent: Region | None,
+        owner: str,
+    ) -> Region:
+        region = Region(name, position, loaded, parent=parent)
+        if base is not None:
+            region.parameters.update(base.parameters)
+            region.conditions.update(base.conditions)
+            region.states.update(base.states)
+            region.transitions.extend(base.transitions)
+            region.invariants.extend(base.invariants)
+        own_actions: list[ast.Action] = []
+        for element in _flatten(elements):
+            if isinstance(element, ast.Parameter):
+                region.parameters[element.name] = element
+            elif isinstance(element, ast.Condition):
+                region.conditions[element.name] = element
+            elif isinstance(element, ast.State):
+                region.states[element.name] = self._state(element, loaded, region, owner)
+            elif isinstance(element, ast.Transition):
+                _override_transition(region.transitions, element, base)
+            elif isinstance(element, ast.Action):
+                own_actions.append(element)
+            elif isinstance(element, ast.Invariant):
+                region.invariants.append(element)
+        overridden = {a.kind for a in own_actions}
+        inherited = [a for a in (base.actions if base else []) if a.kind not in overridden]
+        region.actions = inherited + own_actions
+        return region
+
+    def _state(self, state: ast.State, loaded: Loaded, parent: Region, owner: str) -> StateInfo:
+        info = StateInfo(state)
+        info.imported = self._referenced(loaded, state.stereotypes, "import", owner)
+        base = self._referenced(loaded, state.stereotypes, "extends", owner)
+        if state.body is not None or base is not None:
+            info.region = self._region(
+                state.name,
+                state.position,
+                state.body or (),
+                loaded,
+                base.region if base else None,
+                parent,
+                owner,
+            )
+        return info
+
+
+def _flatten(elements: tuple) -> list:
+    flat: list = []
+    for element in elements:
+        if isinstance(element, ast.ParameterBlock):
+            flat.extend(element.parameters)
+        else:
+            flat.append(element)
+    return flat
+
+
+def _override_transition(
+    transitions: list[ast.Transition], new: ast.Transition, base: Region | None
+) -> None:
+    """A derived transition replaces an inherited one with the same source and stimulus."""
+    if base is not None:
+        for index, old in enumerate(transitions):
+            inherited = old in base.transitions
+            if inherited and (old.source, old.stimulus) == (new.source, new.stimulus):
+                transitions[index] = new
+                return
+    transitions.append(new)
+
+
+def _qualified(unit: ast.StatechartUnit) -> str:
+    name = unit.statechart.name
+    return f"{unit.package}.{name}" if unit.package else name

@@ -1,0 +1,12 @@
+"""Registration with textX's language registry, so that ``textx check`` knows ``.lr`` files."""
+
+from textx import language
+
+from languages.lightrocks.syntax import FRAGMENTS, GRAMMAR
+from metamodel.grammar import textx_metamodel
+
+
+@language("lightrocks", "*.lr")
+def lightrocks_language():
+    """LightRocks action components as UML/P statecharts."""
+    return textx_metamodel(GRAMMAR, FRAGMENTS)

@@ -1,0 +1,53 @@
+"""A check run: load the given models and what they import, then run every CoCo."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from workbench.cocos import CoCo
+from workbench.diagnostics import Diagnostics
+from workbench.languages import extensions, languages
+from workbench.modelpath import ModelPath, model_files, root_for
+from workbench.workspace import Workspace
+
+
+@dataclass
+class CheckContext:
+    """What CoCos see: the workspace, the findings so far, and a cache for shared analyses."""
+
+    workspace: Workspace
+    diagnostics: Diagnostics
+    cache: dict[str, Any] = field(default_factory=dict)
+
+
+def all_cocos() -> list[CoCo]:
+    """Every CoCo of every registered language, ordered by code."""
+    unique = {id(c): c for lang in languages() for c in lang.cocos}
+    return sorted(unique.values(), key=lambda c: c.code)
+
+
+def load(paths: Iterable[Path], model_path: Iterable[Path] = ()) -> CheckContext:
+    """Parse the models below ``paths`` and everything they import."""
+    paths = list(paths)
+    diagnostics = Diagnostics()
+    roots = [*model_path, *(p for p in paths if p.is_dir())]
+    workspace = Workspace(ModelPath(roots), diagnostics)
+    files = [f for p in paths for f in model_files(p, extensions())]
+    for file in files:
+        loaded = workspace.load(file)
+        if loaded is not None:
+            workspace.model_path.add_root(root_for(file, loaded.package))
+    for loaded in workspace.loaded_units():
+        workspace.scope(loaded)
+    return CheckContext(workspace, diagnostics)
+
+
+def check(paths: Iterable[Path], model_path: Iterable[Path] = ()) -> CheckContext:
+    """Load and run every CoCo; all findings end up in ``context.diagnostics``."""
+    context = load(paths, model_path)
+    for coco in all_cocos():
+        context.diagnostics.extend(coco.run(context))
+    return context

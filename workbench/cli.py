@@ -1,0 +1,174 @@
+"""The ``lightrocks`` command line: check, format and list; exit 0 clean, 1 findings, 2 usage."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Callable, Sequence
+from importlib.metadata import version
+from pathlib import Path
+
+from rich.console import Console
+
+from metamodel.ast import Position
+from metamodel.grammar import SyntaxProblem
+from workbench import report
+from workbench.check import all_cocos, check
+from workbench.diagnostics import Diagnostics
+from workbench.files import write_atomic
+from workbench.languages import extensions, language_for, languages
+from workbench.modelpath import model_files
+
+EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
+
+Command = Callable[[argparse.Namespace], int]
+COMMANDS: dict[str, tuple[Callable[[argparse._SubParsersAction], None], Command]] = {}
+
+
+def command(
+    configure: Callable[[argparse._SubParsersAction], None],
+) -> Callable[[Command], Command]:
+    """Register a sub-command: ``configure`` adds its parser, the function runs it."""
+
+    def register(run: Command) -> Command:
+        COMMANDS[run.__name__.removeprefix("cmd_")] = (configure, run)
+        return run
+
+    return register
+
+
+class UsageError(Exception):
+    """Wrong use of the command line: reported with exit code 2."""
+
+
+def existing_paths(paths: Sequence[str]) -> list[Path]:
+    missing = [p for p in paths if not Path(p).exists()]
+    if missing:
+        raise UsageError(f"no such file or folder: {', '.join(missing)}")
+    return [Path(p) for p in paths]
+
+
+def _path_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="model-path folder (package = sub-folder); repeatable",
+    )
+
+
+def _configure_check(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("check", help="check models and report every finding")
+    parser.add_argument("paths", nargs="+", help="model files or folders")
+    _path_option(parser)
+    parser.add_argument("--format", choices=sorted(report.FORMATS), default="text")
+
+
+@command(_configure_check)
+def cmd_check(args: argparse.Namespace) -> int:
+    context = check(existing_paths(args.paths), existing_paths(args.path))
+    findings = context.diagnostics.items
+    output = report.FORMATS[args.format](findings, all_cocos())
+    if output:
+        print(output)
+    return EXIT_FINDINGS if context.diagnostics.has_errors else EXIT_OK
+
+
+def _configure_fmt(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("fmt", help="rewrite models in canonical form")
+    parser.add_argument("paths", nargs="+", help="model files or folders")
+    parser.add_argument(
+        "--check", action="store_true", help="change nothing; exit 1 if a file would change"
+    )
+
+
+@command(_configure_fmt)
+def cmd_fmt(args: argparse.Namespace) -> int:
+    files = [f for p in existing_paths(args.paths) for f in model_files(p, extensions())]
+    diagnostics = Diagnostics()
+    formatted: dict[Path, str] = {}
+    for file in files:
+        language = language_for(file.suffix)
+        if language is None:
+            raise UsageError(f"not a model file: {file}")
+        try:
+            text = file.read_text(encoding="utf-8")
+            formatted[file] = language.format(text, str(file))
+        except SyntaxProblem as problem:
+            diagnostics.error(
+                Position(str(file), problem.line, problem.column), "LR0001", problem.message
+            )
+        except (UnicodeDecodeError, ValueError):
+            diagnostics.error(Position(str(file), 1, 1), "LR0002", "not a text file")
+    if diagnostics.has_errors:
+        print(report.text(diagnostics.items, []))
+        return EXIT_FINDINGS
+    changed = [f for f, text in formatted.items() if text != f.read_text(encoding="utf-8")]
+    if args.check:
+        for file in changed:
+            print(f"would reformat {file}")
+        print(f"{len(changed)} of {len(files)} file(s) would change")
+        return EXIT_FINDINGS if changed else EXIT_OK
+    for file in changed:
+        write_atomic(file, formatted[file])
+        print(f"reformatted {file}")
+    print(f"{len(changed)} of {len(files)} file(s) reformatted")
+    return EXIT_OK
+
+
+def _configure_list(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("list", help="list languages, context conditions or generators")
+    parser.add_argument("what", choices=("languages", "cocos", "generators", "adapters"))
+
+
+@command(_configure_list)
+def cmd_list(args: argparse.Namespace) -> int:
+    from importlib.metadata import entry_points
+
+    if args.what == "languages":
+        rows = [(lang.name, " ".join(lang.extensions), lang.description) for lang in languages()]
+    elif args.what == "cocos":
+        rows = [(c.code, c.severity.value, c.summary) for c in all_cocos()]
+    else:
+        group = f"lightrocks.{args.what}"
+        rows = [(e.name, e.value, "") for e in sorted(entry_points(group=group), key=str)]
+    for row in rows:
+        print("  ".join(part for part in row if part))
+    return EXIT_OK
+
+
+def parser() -> argparse.ArgumentParser:
+    main_parser = argparse.ArgumentParser(
+        prog="lightrocks", description="LightRocks language workbench"
+    )
+    main_parser.add_argument("--version", action="version", version=version("lightrocks"))
+    sub = main_parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for configure, _ in COMMANDS.values():
+        configure(sub)
+    return main_parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    console = Console(stderr=True, highlight=False)
+    try:
+        return COMMANDS[args.command][1](args)
+    except UsageError as error:
+        console.print(f"lightrocks: error: {error}")
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        console.print("lightrocks: interrupted")
+        return 130
+    except Exception as error:
+        if os.environ.get("LIGHTROCKS_DEBUG"):
+            raise
+        console.print(
+            f"lightrocks: internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)"
+        )
+        return EXIT_FINDINGS
+
+
+if __name__ == "__main__":
+    sys.exit(main())

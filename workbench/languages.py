@@ -1,0 +1,42 @@
+"""The language registry: languages are found through the ``lightrocks.languages`` entry points.
+
+A language says which file extensions it reads, how to parse and print them, which
+declarations a parsed unit contributes to the symbol table, and which context conditions
+(CoCos) check it. A separate package adds a language by declaring an entry point.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from functools import cache
+from importlib.metadata import entry_points
+from typing import Any
+
+from workbench.cocos import CoCo
+
+
+@dataclass(frozen=True)
+class Language:
+    name: str
+    extensions: tuple[str, ...]
+    parse: Callable[[str, str], Any]
+    format: Callable[[str, str], str]
+    declarations: Callable[[Any], Iterable[tuple[str, Any]]]
+    cocos: Sequence[CoCo] = field(default_factory=tuple)
+    description: str = ""
+
+
+@cache
+def languages() -> tuple[Language, ...]:
+    """Every registered language, in entry-point name order."""
+    found = sorted(entry_points(group="lightrocks.languages"), key=lambda e: e.name)
+    return tuple(entry.load() for entry in found)
+
+
+def language_for(extension: str) -> Language | None:
+    return next((lang for lang in languages() if extension in lang.extensions), None)
+
+
+def extensions() -> tuple[str, ...]:
+    return tuple(ext for lang in languages() for ext in lang.extensions)

@@ -1,0 +1,60 @@
+"""The model path: folders whose sub-folders are packages, MontiCore style.
+
+A model ``a.b.C`` lives in ``<root>/a/b/C.<ext>``; declarations of package ``a.b`` may also
+live in any file of ``<root>/a/b/`` whose language holds several declarations per file.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+
+LIBRARY = Path(__file__).resolve().parent.parent / "languages" / "domain" / "library"
+
+
+class ModelPath:
+    def __init__(self, roots: Iterable[Path]) -> None:
+        unique: dict[Path, None] = {}
+        for root in [*roots, LIBRARY]:
+            unique[root.resolve()] = None
+        self.roots = list(unique)
+
+    def add_root(self, root: Path) -> None:
+        root = root.resolve()
+        if root not in self.roots:
+            self.roots.insert(len(self.roots) - 1, root)
+
+    def package_folders(self, package: str) -> Iterator[Path]:
+        """Existing folders of ``package`` in model-path order."""
+        parts = package.split(".") if package else []
+        for root in self.roots:
+            folder = root.joinpath(*parts)
+            if folder.is_dir():
+                yield folder
+
+    def packages_of(self, file: Path) -> list[str]:
+        """The packages a file can be in: one per root that contains it."""
+        file = file.resolve()
+        return [
+            ".".join(file.parent.relative_to(root).parts)
+            for root in self.roots
+            if file.is_relative_to(root)
+        ]
+
+
+def root_for(file: Path, package: str) -> Path:
+    """The model-path root implied by a file and the package it declares."""
+    folder = file.resolve().parent
+    depth = len(package.split(".")) if package else 0
+    for _ in range(depth):
+        if folder.parent == folder:
+            break
+        folder = folder.parent
+    return folder
+
+
+def model_files(path: Path, extensions: tuple[str, ...]) -> list[Path]:
+    """Model files below ``path`` (or ``path`` itself), sorted for deterministic output."""
+    if path.is_file():
+        return [path]
+    return sorted(p for p in path.rglob("*") if p.suffix in extensions and p.is_file())

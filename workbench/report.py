@@ -1,0 +1,103 @@
+"""Rendering of findings: text for people, JSON for tools, SARIF for code scanning, and
+GitHub workflow annotations."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Sequence
+from importlib.metadata import version
+
+from workbench.cocos import CoCo
+from workbench.diagnostics import Diagnostic, Severity
+
+SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+_SARIF_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
+_GITHUB_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
+
+
+def text(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+    lines = [str(d) for d in diagnostics]
+    errors = sum(d.severity is Severity.ERROR for d in diagnostics)
+    warnings = sum(d.severity is Severity.WARNING for d in diagnostics)
+    lines.append(f"{errors} error(s), {warnings} warning(s)")
+    return "\n".join(lines)
+
+
+def as_json(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+    items = [
+        {
+            "file": d.file,
+            "line": d.line,
+            "column": d.column,
+            "code": d.code,
+            "severity": d.severity.value,
+            "message": d.message,
+            "hint": d.hint,
+        }
+        for d in diagnostics
+    ]
+    return json.dumps(items, indent=2)
+
+
+def sarif(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+    rules = {c.code: c for c in cocos}
+    used = sorted({d.code for d in diagnostics})
+    document = {
+        "$schema": SARIF_SCHEMA,
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {
+                    "driver": {
+                        "name": "lightrocks",
+                        "version": version("lightrocks"),
+                        "rules": [
+                            {
+                                "id": code,
+                                "shortDescription": {
+                                    "text": rules[code].summary if code in rules else code
+                                },
+                            }
+                            for code in used
+                        ],
+                    }
+                },
+                "results": [
+                    {
+                        "ruleId": d.code,
+                        "level": _SARIF_LEVEL[d.severity],
+                        "message": {"text": f"{d.message} ({d.hint})" if d.hint else d.message},
+                        "locations": [
+                            {
+                                "physicalLocation": {
+                                    "artifactLocation": {"uri": d.file},
+                                    "region": {"startLine": d.line, "startColumn": d.column},
+                                }
+                            }
+                        ],
+                    }
+                    for d in diagnostics
+                ],
+            }
+        ],
+    }
+    return json.dumps(document, indent=2)
+
+
+def github(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+    def escape(value: str) -> str:
+        return value.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+    return "\n".join(
+        f"::{_GITHUB_LEVEL[d.severity]} file={d.file},line={d.line},col={d.column},"
+        f"title={d.code}::{escape(d.message + (f' ({d.hint})' if d.hint else ''))}"
+        for d in diagnostics
+    )
+
+
+FORMATS: dict[str, Callable[[Sequence[Diagnostic], Sequence[CoCo]], str]] = {
+    "text": text,
+    "json": as_json,
+    "sarif": sarif,
+    "github": github,
+}

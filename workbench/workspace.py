@@ -1,0 +1,191 @@
+"""Loading models from the model path and resolving names through one index.
+
+Every declaration gets a qualified name in one dictionary, so resolving a reference is a
+dictionary lookup: checking grows linearly with the model, unlike textX's default scoping
+that searches the whole model for every reference.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from metamodel.ast import Import, Position
+from metamodel.grammar import SyntaxProblem
+from workbench.diagnostics import Diagnostics, did_you_mean
+from workbench.languages import Language, extensions, language_for
+from workbench.modelpath import ModelPath
+
+IMPLICIT_PACKAGES = ("lightrocks",)
+
+
+@dataclass
+class Loaded:
+    """One parsed file."""
+
+    path: Path
+    language: Language
+    unit: Any
+
+    @property
+    def package(self) -> str:
+        return self.unit.package
+
+
+@dataclass(frozen=True)
+class Symbol:
+    qualified_name: str
+    node: Any
+    loaded: Loaded = field(compare=False)
+
+    @property
+    def name(self) -> str:
+        return self.qualified_name.rpartition(".")[2]
+
+
+class Workspace:
+    def __init__(self, model_path: ModelPath, diagnostics: Diagnostics) -> None:
+        self.model_path = model_path
+        self.diagnostics = diagnostics
+        self.files: dict[Path, Loaded | None] = {}
+        self.symbols: dict[str, Symbol] = {}
+        self._packages: dict[str, dict[str, Symbol]] = {}
+        self._loaded_packages: set[str] = set()
+        self._scopes: dict[Path, dict[str, Symbol]] = {}
+
+    # -- loading --------------------------------------------------------------------------
+
+    def load(self, path: Path) -> Loaded | None:
+        """Parse a file once; problems become diagnostics and the file yields ``None``."""
+        path = path.resolve()
+        if path in self.files:
+            return self.files[path]
+        self.files[path] = None
+        language = language_for(path.suffix)
+        shown = _shown(path)
+        if language is None:
+            self.diagnostics.error(Position(shown, 1, 1), "LR0004", "not a model file")
+            return None
+        text = self._read(path, shown)
+        if text is None:
+            return None
+        try:
+            unit = language.parse(text, shown)
+        except SyntaxProblem as problem:
+            where = Position(shown, problem.line, problem.column)
+            self.diagnostics.error(where, "LR0001", problem.message)
+            return None
+        loaded = Loaded(path, language, unit)
+        self.files[path] = loaded
+        for name, node in language.declarations(unit):
+            self._declare(f"{unit.package}.{name}" if unit.package else name, node, loaded)
+        return loaded
+
+    def _read(self, path: Path, shown: str) -> str | None:
+        where = Position(shown, 1, 1)
+        try:
+            data = path.read_bytes()
+        except OSError as error:
+            self.diagnostics.error(where, "LR0004", f"cannot read file: {error.strerror}")
+            return None
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as error:
+            line = data[: error.start].count(b"\n") + 1
+            self.diagnostics.error(
+                Position(shown, line, 1), "LR0002", "not a text file: invalid UTF-8"
+            )
+            return None
+        if "\x00" in text:
+            line = text[: text.index("\x00")].count("\n") + 1
+            self.diagnostics.error(
+                Position(shown, line, 1), "LR0002", "not a text file: contains NUL bytes"
+            )
+            return None
+        if not text.strip():
+            self.diagnostics.error(where, "LR0003", "empty model file")
+            return None
+        return text
+
+    def _declare(self, qualified_name: str, node: Any, loaded: Loaded) -> None:
+        existing = self.symbols.get(qualified_name)
+        if existing is not None:
+            self.diagnostics.error(
+                node.position,
+                "LR0101",
+                f"'{qualified_name}' is already declared at {existing.node.position}",
+            )
+            return
+        symbol = Symbol(qualified_name, node, loaded)
+        self.symbols[qualified_name] = symbol
+        package, _, name = qualified_name.rpartition(".")
+        self._packages.setdefault(package, {})[name] = symbol
+
+    def load_package(self, package: str) -> dict[str, Symbol]:
+        """Load every model file of a package (not its sub-packages) and return its symbols."""
+        if package not in self._loaded_packages:
+            self._loaded_packages.add(package)
+            for folder in self.model_path.package_folders(package):
+                for path in sorted(folder.iterdir()):
+                    if path.suffix in extensions() and path.is_file():
+                        self.load(path)
+        return self._packages.get(package, {})
+
+    # -- resolution -----------------------------------------------------------------------
+
+    def lookup(self, qualified_name: str) -> Symbol | None:
+        """A declaration by qualified name, loading its package on demand."""
+        symbol = self.symbols.get(qualified_name)
+        if symbol is None and "." in qualified_name:
+            self.load_package(qualified_name.rpartition(".")[0])
+            symbol = self.symbols.get(qualified_name)
+        return symbol
+
+    def scope(self, loaded: Loaded) -> dict[str, Symbol]:
+        """Simple names visible in a file: implicit library, own package, then its imports."""
+        scope = self._scopes.get(loaded.path)
+        if scope is not None:
+            return scope
+        scope = {}
+        for package in (*IMPLICIT_PACKAGES, loaded.package):
+            scope.update(self.load_package(package))
+        for imported in loaded.unit.imports:
+            scope.update(self._import(imported))
+        self._scopes[loaded.path] = scope
+        return scope
+
+    def _import(self, imported: Import) -> dict[str, Symbol]:
+        if imported.wildcard:
+            symbols = self.load_package(imported.name)
+            if not symbols:
+                self.diagnostics.error(
+                    imported.position, "LR0102", f"package '{imported.name}' not found"
+                )
+            return symbols
+        symbol = self.lookup(imported.name)
+        if symbol is None:
+            package, _, name = imported.name.rpartition(".")
+            hint = did_you_mean(name, self._packages.get(package, {}))
+            self.diagnostics.error(
+                imported.position, "LR0102", f"cannot resolve import '{imported.name}'", hint
+            )
+            return {}
+        return {symbol.name: symbol}
+
+    def resolve(self, loaded: Loaded, name: str) -> Symbol | None:
+        """A simple name through the file's scope, or a qualified name directly."""
+        if "." in name:
+            return self.lookup(name)
+        return self.scope(loaded).get(name)
+
+    def loaded_units(self) -> list[Loaded]:
+        return [loaded for loaded in self.files.values() if loaded is not None]
+
+
+def _shown(path: Path) -> str:
+    """A path as users see it in findings: relative to the working folder when possible."""
+    try:
+        return str(path.relative_to(Path.cwd()))
+    except ValueError:
+        return str(path)
