@@ -1,7 +1,9 @@
 """The fast twin: Pinocchio rigid-body dynamics with penalty contacts against static boxes.
 
 The arm is integrated with semi-implicit Euler at 1 kHz from ``M a = τ − h − damping·v + Jᵀf``
-(mass matrix and bias from Pinocchio, joint damping from the MJCF). The fingers are a
+with Pinocchio's ABA on the arm model with the fingers locked (joint damping from the MJCF).
+Both fingers always move symmetrically, so the locked fingers leave gravity exact and change
+the arm inertia by less than 1e-4 kg m². The fingers are a
 first-order model: they move at the speed the finger damping of the MJCF gives the
 grip force and stop when
 they would press into a box. Contacts are the corners of the hand and finger boxes against
@@ -38,7 +40,7 @@ from adapters.robot_model import (
     load_robot,
     scene_path,
 )
-from adapters.vec import cross, symmetrize_upper
+from adapters.vec import cross
 
 CONTACT_STIFFNESS = 2e4
 """Normal penalty stiffness per contact point [N/m]."""
@@ -52,7 +54,6 @@ GRASP_WIDTH = 0.02
 """Width [m] at which the twin's fingers stop on a part of the scene's fixture twin."""
 REACH = 0.2
 """Radius [m] around the hand origin that holds every contact point (broad phase)."""
-_LOWER = np.tril_indices(ARM_DOF, -1)
 _CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
 
 
@@ -68,6 +69,9 @@ class PinocchioPlant:
         self._damping = np.array([self.model.dof_damping[j.dofadr[0]] for j in joints])
         self.robot = load_robot()
         self.robot_data = self.robot.createData()
+        fingers = [self.robot.getJointId(name) for name in FINGER_JOINTS]
+        self._arm = pin.buildReducedModel(self.robot, fingers, pin.neutral(self.robot))
+        self._arm_data = self._arm.createData()
         self.q = np.concatenate((READY_Q, [FINGER_TRAVEL, FINGER_TRAVEL]))
         self.v = np.zeros(NV)
         self.sync()
@@ -76,6 +80,10 @@ class PinocchioPlant:
         self._load = float(self.model.body_subtreemass[hand]) * GRAVITY
         self._load_com = self._in_body(hand, self.data.subtree_com[hand])
         self._boxes = self._static_boxes()
+        extents = np.array([np.abs(r) @ h for _, r, h in self._boxes]).reshape(-1, 3) + REACH
+        centres = np.array([c for c, _, _ in self._boxes]).reshape(-1, 3)
+        self._reach_low, self._reach_high = centres - extents, centres + extents
+        """World-axis boxes around each static box that the hand origin must enter to touch it."""
         self._frames, self._points = self._contact_points()
         self._contact = np.zeros(6)
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
@@ -127,9 +135,9 @@ class PinocchioPlant:
         blocked = self._apply_contacts(generalized)
         if self._fixture is not None:
             self._apply_fixture(generalized, grip)
-        mass = symmetrize_upper(pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF], _LOWER)
-        bias = pin.nonLinearEffects(model, data, self.q, self.v)[:ARM_DOF]
-        accel = np.linalg.solve(mass, generalized[:ARM_DOF] - bias)
+        accel = pin.aba(
+            self._arm, self._arm_data, self.q[:ARM_DOF], self.v[:ARM_DOF], generalized[:ARM_DOF]
+        )
         self.v[:ARM_DOF] += DT * accel
         self.q[:ARM_DOF] += DT * self.v[:ARM_DOF]
         target = self._grasp if grip > 0 else FINGER_TRAVEL
@@ -164,13 +172,10 @@ class PinocchioPlant:
         self._contact[:] = 0.0
         blocked = np.zeros(2, dtype=bool)
         hand = data.oMf[self._frames[0]].translation
-        near = [
-            box
-            for box in self._boxes
-            if np.all(np.abs(box[1].T @ (hand - box[0])) < box[2] + REACH)
-        ]
-        if not near:
+        close = np.all((hand > self._reach_low) & (hand < self._reach_high), axis=1)
+        if not close.any():
             return blocked
+        near = [box for box, flag in zip(self._boxes, close, strict=True) if flag]
         ft = data.oMf[self._ft_id].translation
         jacobians_ready = False
         for index, (frame, local) in enumerate(zip(self._frames, self._points, strict=True)):
