@@ -46,7 +46,7 @@ RAIL_X = 0.60
 RAIL_LIP_TOP_Z = 0.1075
 """Height [m] of the rail lips' top face: a latched terminal's housing rests there."""
 RAIL_HALF_LENGTH = 0.12
-TERMINAL_Y = (-0.05, 0.0, 0.05)
+TERMINAL_Y = (-0.07, 0.0, 0.07)
 """y [m] of the terminals in the tray, and of their target slots on the rail."""
 TRAY_X = 0.45
 TERMINAL_TRAY_Z = 0.1101

@@ -11,9 +11,13 @@ from pathlib import Path
 
 import mujoco
 import numpy as np
+import pinocchio as pin
 import pytest
 
 from adapters import scenes
+from adapters.mujoco import MujocoAdapter
+from adapters.pinocchio import PinocchioAdapter
+from runtime.contract import StopCondition
 
 SCENE = Path(scenes.__file__).parent / "models" / "din_rail.xml"
 
@@ -147,3 +151,96 @@ def test_rail_twin_snaps_and_holds() -> None:
     twin.step(0.001, tcp, down, holding=False)
     assert twin.measurements()["terminal2_latched"]
     assert twin.measurements()["terminals_latched"] == 1
+
+
+# --- robot level: pick a terminal from the tray and snap it onto the rail ---------------------
+
+GRASP_HEIGHT = 0.028
+"""TCP above a terminal's underside when grasping: fingertips 13 mm above it."""
+
+
+class ClickDetector:
+    """Stop predicate: the force along the push rises to a peak, drops sharply (the click),
+    and rises again as the housing seats on the rail. Records the force trace."""
+
+    def __init__(self) -> None:
+        self.trace: list[float] = []
+        self.peak = 0.0
+        self.clicked = False
+
+    def __call__(self, snap) -> bool:
+        force = snap.robot.wrench.force.z  # the rail pushes the tool up
+        self.trace.append(force)
+        if not self.clicked:
+            self.peak = max(self.peak, force)
+            self.clicked = self.peak > 15.0 and force < 0.6 * self.peak
+            return False
+        return force > 0.9 * self.peak
+
+
+def _snap_on(adapter, terminal: str) -> ClickDetector:
+    """Pick ``terminal`` from the tray, push it onto its rail slot until the click, let go."""
+    down = adapter.snapshot().robot.tcp.rotation
+    reached = [StopCondition("done", lambda s: s.robot.goalReached)]
+    settled = [StopCondition("done", lambda s: s.gripper.done)]
+    grip = [
+        StopCondition("holding", lambda s: s.gripper.holding),
+        StopCondition("empty", lambda s: s.gripper.done),
+    ]
+    y = scenes.TERMINAL_Y[scenes.TERMINALS.index(terminal)]
+
+    def move(x: float, z: float, speed: float) -> None:
+        args = {"goal": pin.SE3(down, np.array([x, y, z])), "speed": speed}
+        assert adapter.execute("robot", "moveCartesian", args, reached, 5.0).outcome == "done"
+
+    assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+    move(scenes.TRAY_X, 0.20, 0.2)
+    move(scenes.TRAY_X, scenes.TERMINAL_TRAY_Z + GRASP_HEIGHT, 0.05)
+    assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
+    move(scenes.TRAY_X, 0.20, 0.1)
+    move(scenes.RAIL_X, 0.20, 0.2)
+    move(scenes.RAIL_X, scenes.RAIL_LIP_TOP_Z + 0.004 + GRASP_HEIGHT, 0.05)
+    click = ClickDetector()
+    press = pin.SE3(down, np.array([scenes.RAIL_X, y, scenes.RAIL_LIP_TOP_Z - 0.03]))
+    stop = [
+        StopCondition("clicked", click),
+        StopCondition("tooHard", lambda s: s.robot.wrench.force.z > 45.0),
+        StopCondition("done", lambda s: s.robot.goalReached),
+    ]
+    args = {"goal": press, "speed": 0.005}
+    assert adapter.execute("robot", "moveCartesian", args, stop, 6.0).outcome == "clicked"
+    assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+    move(scenes.RAIL_X, 0.20, 0.1)
+    return click
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("adapter_class", [MujocoAdapter, PinocchioAdapter])
+def test_robot_snaps_a_terminal_on_and_hears_the_click(adapter_class) -> None:
+    """MuJoCo: the scene's physics; Pinocchio: the arm with the analytic RailTwin."""
+    adapter = adapter_class("din_rail")
+    try:
+        click = _snap_on(adapter, "terminal2")
+        values = adapter.measurements()
+    finally:
+        adapter.close()
+    trace = np.array(click.trace)
+    top = int(np.argmax(trace >= click.peak))  # the peak before the click
+    low = float(np.min(trace[top : top + 50]))
+    print(f"peak {trace[top]:.1f} N, then {low:.1f} N within 50 ms; {values}")
+    assert trace[top] == pytest.approx(scenes.SNAP_FORCE, rel=0.2)
+    assert low < 0.5 * trace[top]  # the click: a sharp drop right after the peak
+    assert values["terminal2_latched"]
+    assert not values["terminal1_latched"] and not values["terminal3_latched"]
+
+
+@pytest.mark.slow
+def test_robot_fills_the_rail_with_all_three_terminals() -> None:
+    adapter = MujocoAdapter("din_rail")
+    try:
+        for terminal in scenes.TERMINALS:
+            _snap_on(adapter, terminal)
+        values = adapter.measurements()
+    finally:
+        adapter.close()
+    assert values["terminals_latched"] == 3

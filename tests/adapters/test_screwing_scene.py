@@ -12,9 +12,13 @@ from pathlib import Path
 
 import mujoco
 import numpy as np
+import pinocchio as pin
 import pytest
 
 from adapters import scenes
+from adapters.mujoco import MujocoAdapter
+from adapters.pinocchio import PinocchioAdapter
+from runtime.contract import StopCondition
 
 SCENE = Path(scenes.__file__).parent / "models" / "screwing.xml"
 HALF_TURN = math.pi
@@ -136,3 +140,97 @@ def test_screw_twin_advances_and_bottoms_out() -> None:
     assert 0.04 < torques[250] < 0.07
     assert 0.18 < torques[7 * 500 + 250] < 0.22
     assert max(torques) > 0.32
+
+
+# --- robot level: the LightRocks screwing skill on the MuJoCo adapter ---------------------
+
+TURN = math.radians(179.5)
+"""Just under 180 deg: at exactly 180 deg the controller's log3 picks the turning direction
+from rounding noise (either way is the same rotation)."""
+TURN_STIFFNESS = [2000.0, 2000.0, 800.0, 150.0, 150.0, 30.0]
+TIGHT = 0.32
+GRASP_Z = scenes.SCREW_HEAD_TOP_Z - 0.003
+"""TCP height for the grasp: fingertips 4 mm above the head's underside."""
+
+
+def _screw_in(adapter, *, turns: int = 12) -> tuple[list[tuple[str, float, float]], float]:
+    """Grasp the screw and run Turn/Release/TurnBack/Regrasp until the 0.32 Nm condition.
+
+    Returns per turn (outcome, depth after it, peak |torque z|) and the final depth.
+    """
+    down = adapter.snapshot().robot.tcp.rotation
+    reached = [StopCondition("done", lambda s: s.robot.goalReached)]
+    settled = [StopCondition("done", lambda s: s.gripper.done)]
+    grip = [
+        StopCondition("holding", lambda s: s.gripper.holding),
+        StopCondition("empty", lambda s: s.gripper.done),
+    ]
+    x, y = scenes.SCREW_AXIS_XY
+    assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+    for z, speed in ((GRASP_Z + 0.05, 0.2), (GRASP_Z, 0.05)):
+        goal = pin.SE3(down, np.array([x, y, z]))
+        outcome = adapter.execute(
+            "robot", "moveCartesian", {"goal": goal, "speed": speed}, reached, 5
+        )
+        assert outcome.outcome == "done"
+    assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
+
+    log = []
+    advance = scenes.SCREW_PITCH * TURN / (2 * math.pi)  # a screw motion: turn and follow
+    for _ in range(turns):
+        peak = [0.0]
+
+        def tight(snap, peak=peak) -> bool:
+            torque = abs(snap.robot.wrench.torque.z)
+            peak[0] = max(peak[0], torque)
+            return torque > TIGHT
+
+        turn = pin.SE3(pin.rpy.rpyToMatrix(0.0, 0.0, TURN), np.array([0.0, 0.0, advance]))
+        args = {
+            "goal": adapter.snapshot().robot.tcp * turn,
+            "stiffness": TURN_STIFFNESS,
+            "damping": [0.7] * 6,
+            "angular_speed": 1.0,
+        }
+        stop = [
+            StopCondition("torqueLimit", tight),
+            StopCondition("done", lambda s: s.robot.goalReached),
+        ]
+        outcome = adapter.execute("robot", "moveCartesian", args, stop, 6.0).outcome
+        log.append((outcome, adapter.measurements()["screw_depth"], peak[0]))
+        if outcome != "done":
+            break
+        assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+        back = adapter.snapshot().robot.tcp * pin.SE3(
+            pin.rpy.rpyToMatrix(0.0, 0.0, -TURN), np.zeros(3)
+        )
+        args = {"goal": back, "angular_speed": 1.5}
+        assert adapter.execute("robot", "moveCartesian", args, reached, 6.0).outcome == "done"
+        assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
+    return log, adapter.measurements()["screw_depth"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("adapter_class", [MujocoAdapter, PinocchioAdapter])
+def test_robot_screws_in_until_the_thread_tightens(adapter_class) -> None:
+    """MuJoCo: the scene's physics; Pinocchio: the arm with the analytic ScrewTwin."""
+    adapter = adapter_class("screwing")
+    try:
+        log, depth = _screw_in(adapter)
+        values = adapter.measurements()
+    finally:
+        adapter.close()
+    for outcome, d, peak in log:
+        print(f"{outcome:12s} depth {d * 1e3:5.2f} mm  peak |torque z| {peak:.3f} Nm")
+    outcomes = [outcome for outcome, _, _ in log]
+    # half-turns advance the screw by 1.5 mm each while the torque stays under 0.32 Nm ...
+    assert outcomes[:-1] == ["done"] * (len(log) - 1)
+    assert 6 <= len(log) <= 10
+    depths = [d for _, d, _ in log]
+    assert all(b - a == pytest.approx(0.0015, abs=3e-4) for a, b in itertools.pairwise(depths[:-1]))
+    peaks = [p for _, _, p in log[:-1]]
+    assert max(peaks) < TIGHT and peaks[-1] > peaks[0] + 0.05  # the thread gets tighter
+    # ... until the head seats: then the turn stops on the 0.32 Nm condition at target depth
+    assert outcomes[-1] == "torqueLimit"
+    assert depth == pytest.approx(scenes.SCREW_TARGET_DEPTH, abs=2e-4)
+    assert values["screw_bottomed"]
