@@ -8,6 +8,8 @@ textX takes the first rule as the root of the model.
 from __future__ import annotations
 
 import gc
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -42,12 +44,24 @@ def textx_metamodel(root: Path, fragments: tuple[str, ...]):
 def parse(root: Path, fragments: tuple[str, ...], text: str, file: str):
     """Parse ``text``; raise :class:`SyntaxProblem` with a readable message on mismatch."""
     metamodel = textx_metamodel(root, fragments)
-    collecting = gc.isenabled()
-    gc.disable()  # the parse tree is acyclic garbage; collecting during parsing costs 30 %
     try:
         return metamodel.model_from_str(text, file_name=file)
     except TextXSyntaxError as error:
         raise SyntaxProblem(_describe(error), error.line or 1, error.col or 1) from None
+
+
+@contextmanager
+def paused_gc() -> Iterator[None]:
+    """Pause the cyclic garbage collector while building trees.
+
+    Parsing and conversion allocate hundreds of thousands of acyclic objects; the collector
+    would rescan the growing tree again and again, which made large models grow
+    super-linearly (6.5 s instead of 3 s for 10,000 states).
+    """
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        yield
     finally:
         if collecting:
             gc.enable()

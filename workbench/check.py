@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -48,6 +49,10 @@ def load(paths: Iterable[Path], model_path: Iterable[Path] = ()) -> CheckContext
 def check(paths: Iterable[Path], model_path: Iterable[Path] = ()) -> CheckContext:
     """Load and run every CoCo; all findings end up in ``context.diagnostics``."""
     context = load(paths, model_path)
-    for coco in all_cocos():
-        context.diagnostics.extend(coco.run(context))
+    gc.freeze()  # the loaded models live to the end: keep the collector from rescanning them
+    try:
+        for coco in all_cocos():
+            context.diagnostics.extend(coco.run(context))
+    finally:
+        gc.unfreeze()
     return context

@@ -7,7 +7,7 @@ from typing import Any
 
 from metamodel import ast
 from metamodel.convert import Converter
-from metamodel.grammar import parse
+from metamodel.grammar import parse, paused_gc
 
 GRAMMAR = Path(__file__).with_name("domain.tx")
 FRAGMENTS = ("common", "expressions")
@@ -78,5 +78,6 @@ class DomainConverter(Converter):
 
 def parse_domain(text: str, file: str) -> ast.DomainUnit:
     """Parse one ``.lrd`` text; raises ``metamodel.grammar.SyntaxProblem``."""
-    tree = parse(GRAMMAR, FRAGMENTS, text, file)
-    return DomainConverter(text, file).convert(tree)
+    with paused_gc():
+        tree = parse(GRAMMAR, FRAGMENTS, text, file)
+        return DomainConverter(text, file).convert(tree)

@@ -7,7 +7,7 @@ from typing import Any
 
 from metamodel import ast
 from metamodel.convert import Converter
-from metamodel.grammar import parse
+from metamodel.grammar import parse, paused_gc
 
 GRAMMAR = Path(__file__).with_name("lightrocks.tx")
 FRAGMENTS = ("common", "statecharts", "expressions")
@@ -34,5 +34,6 @@ class LightRocksConverter(Converter):
 
 def parse_statechart(text: str, file: str) -> ast.StatechartUnit:
     """Parse one ``.lr`` text; raises ``metamodel.grammar.SyntaxProblem``."""
-    tree = parse(GRAMMAR, FRAGMENTS, text, file)
-    return LightRocksConverter(text, file).convert(tree)
+    with paused_gc():
+        tree = parse(GRAMMAR, FRAGMENTS, text, file)
+        return LightRocksConverter(text, file).convert(tree)

@@ -1,0 +1,64 @@
+"""Check time of synthetic models from 1,000 to 10,000 states and transitions.
+
+Prints the time per size and the exponent of a power-law fit (1.0 = linear growth).
+Run: .venv/bin/python benchmarks/bench_check.py
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+import time
+from pathlib import Path
+
+from workbench.check import check
+
+SIZES = (1_000, 2_000, 5_000, 10_000)
+
+
+def synthetic(states: int) -> str:
+    """A ring of states; each transition has a guard with a unit and an outcome-like event."""
+    lines = [
+        "package big;",
+        "",
+        "statechart Big {",
+        "  parameters {",
+        "    Length x = 0 mm;",
+        "  }",
+    ]
+    lines.append("  initial state S0;")
+    lines += [f"  state S{i};" for i in range(1, states)]
+    lines += [f"  S{i} -> S{(i + 1) % states} [x < {i} mm] step;" for i in range(states)]
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def measure(states: int, folder: Path) -> float:
+    package = folder / "big"
+    package.mkdir(exist_ok=True)
+    (package / "Big.lr").write_text(synthetic(states), encoding="utf-8")
+    start = time.perf_counter()
+    context = check([folder])
+    elapsed = time.perf_counter() - start
+    assert not context.diagnostics.has_errors, context.diagnostics.items[:3]
+    return elapsed
+
+
+def main() -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        measure(100, Path(tmp))  # warm-up: grammar construction happens once per process
+        times = [(n, measure(n, Path(tmp))) for n in SIZES]
+    for n, seconds in times:
+        print(f"{n:>6} states + {n:>6} transitions: {seconds:6.2f} s")
+    xs = [math.log(n) for n, _ in times]
+    ys = [math.log(t) for _, t in times]
+    mean_x, mean_y = sum(xs) / len(xs), sum(ys) / len(ys)
+    slope = sum((x - mean_x) * (y - mean_y) for x, y in zip(xs, ys, strict=True)) / sum(
+        (x - mean_x) ** 2 for x in xs
+    )
+    print(f"fitted exponent: {slope:.2f} (1.00 = linear)")
+    print(f"10,000-state check: {times[-1][1]:.2f} s (budget 5 s)")
+
+
+if __name__ == "__main__":
+    main()
