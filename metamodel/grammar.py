@@ -10,7 +10,6 @@ from __future__ import annotations
 import gc
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
@@ -19,13 +18,14 @@ from textx import TextXSyntaxError, metamodel_from_str
 FRAGMENTS = Path(__file__).parent
 
 
-@dataclass(frozen=True)
 class SyntaxProblem(Exception):
     """A text that does not match the grammar, located at line and column."""
 
-    message: str
-    line: int
-    column: int
+    def __init__(self, message: str, line: int, column: int) -> None:
+        super().__init__(f"{line}:{column}: {message}")
+        self.message = message
+        self.line = line
+        self.column = column
 
 
 def compose(root: Path, *fragments: str) -> str:

@@ -59,7 +59,7 @@ class Typing:
         self.models = models
         self.types = Types(models.workspace)
         self.findings: dict[str, list[Finding]] = defaultdict(list)
-        self._by_file = {_file(loaded): loaded for loaded in models.workspace.loaded_units()}
+        self._by_file: dict[str, Loaded] = {}
         for component in models.components:
             for region in component.region.regions():
                 if region.loaded is component.loaded:
@@ -250,6 +250,8 @@ class Typing:
         return component.loaded
 
     def _declaring(self, device: ast.Device | None) -> Loaded:
+        if device.position.file not in self._by_file:  # files load lazily during typing
+            self._by_file = {_file(u): u for u in self.models.workspace.loaded_units()}
         return self._by_file[device.position.file]
 
     def arguments(
