@@ -17,6 +17,7 @@ from workbench import report
 from workbench.check import all_cocos, check
 from workbench.diagnostics import Diagnostics
 from workbench.files import write_atomic
+from workbench.generators import GenerationError, GenerationRequest, generators, write_all
 from workbench.languages import extensions, language_for, languages
 from workbench.modelpath import model_files
 
@@ -116,6 +117,48 @@ def cmd_fmt(args: argparse.Namespace) -> int:
         print(f"reformatted {file}")
     print(f"{len(changed)} of {len(files)} file(s) reformatted")
     return EXIT_OK
+
+
+def _configure_generate(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("generate", help="generate code or pictures from checked models")
+    parser.add_argument("models", nargs="+", help="model files or folders")
+    parser.add_argument("--target", required=True, help="generator name (see 'list generators')")
+    parser.add_argument("-o", "--output", required=True, help="existing output folder")
+    _path_option(parser)
+    parser.add_argument("--templates", help="folder whose templates override the built-in ones")
+    parser.add_argument(
+        "--option", action="append", default=[], metavar="NAME=VALUE", help="generator option"
+    )
+
+
+@command(_configure_generate)
+def cmd_generate(args: argparse.Namespace) -> int:
+    available = generators()
+    if args.target not in available:
+        raise UsageError(f"unknown target '{args.target}'; known: {', '.join(available)}")
+    options = dict(_option(o) for o in args.option)
+    templates = existing_paths([args.templates])[0] if args.templates else None
+    paths = existing_paths(args.models)
+    context = check(paths, existing_paths(args.path))
+    if context.diagnostics.has_errors:
+        print(report.text(context.diagnostics.items, all_cocos()))
+        return EXIT_FINDINGS
+    files = [f.resolve() for p in paths for f in model_files(p, extensions())]
+    request = GenerationRequest(context, files, options, templates)
+    try:
+        written = write_all(Path(args.output), available[args.target].generate(request))
+    except GenerationError as error:
+        print(f"lightrocks: error: {error}", file=sys.stderr)
+        return EXIT_FINDINGS
+    print(f"{len(written)} file(s) written to {args.output}")
+    return EXIT_OK
+
+
+def _option(text: str) -> tuple[str, str]:
+    name, separator, value = text.partition("=")
+    if not separator or not name:
+        raise UsageError(f"option '{text}' is not NAME=VALUE")
+    return name, value
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:

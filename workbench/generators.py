@@ -1,0 +1,93 @@
+"""The generator registry and the shared machinery of every target.
+
+A generator is found through the ``lightrocks.generators`` entry points. It receives the
+checked models and returns the files it wants written, as relative path to text; the
+workbench writes them all or nothing. Templates are jinja2 files beside the generator; a
+user's template folder is searched first, so one template can be replaced by name without
+forking the generator (MontiCore's template path).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cache
+from importlib.metadata import entry_points
+from pathlib import Path
+from typing import Protocol
+
+import jinja2
+
+from workbench.check import CheckContext
+
+
+@dataclass
+class GenerationRequest:
+    """What to generate: the checked models, the files named by the user, and options."""
+
+    context: CheckContext
+    files: list[Path]
+    options: Mapping[str, str] = field(default_factory=dict)
+    templates: Path | None = None
+
+
+class Generator(Protocol):
+    name: str
+    description: str
+
+    def generate(self, request: GenerationRequest) -> dict[str, str]:
+        """Files to write: relative path -> content."""
+        ...
+
+
+class GenerationError(Exception):
+    """A problem the user can fix (bad option, output folder not writable, …)."""
+
+
+@cache
+def generators() -> dict[str, Generator]:
+    found = sorted(entry_points(group="lightrocks.generators"), key=lambda e: e.name)
+    return {entry.name: entry.load() for entry in found}
+
+
+def template_environment(builtin: Path, override: Path | None) -> jinja2.Environment:
+    """Templates from ``override`` first, then the generator's own folder."""
+    folders = [str(override)] if override is not None else []
+    folders.append(str(builtin))
+    return jinja2.Environment(
+        loader=jinja2.FileSystemLoader(folders),
+        undefined=jinja2.StrictUndefined,
+        keep_trailing_newline=True,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        autoescape=False,
+    )
+
+
+def write_all(output: Path, files: Mapping[str, str]) -> list[Path]:
+    """Write every file or none: stage in a temporary folder inside ``output``, then move."""
+    if not output.is_dir():
+        raise GenerationError(f"output folder '{output}' does not exist")
+    try:
+        staging = Path(tempfile.mkdtemp(prefix=".lightrocks-", dir=output))
+    except OSError as error:
+        raise GenerationError(f"cannot write to '{output}': {error.strerror}") from None
+    written: list[Path] = []
+    try:
+        for relative, text in sorted(files.items()):
+            staged = staging / relative
+            staged.parent.mkdir(parents=True, exist_ok=True)
+            staged.write_text(text, encoding="utf-8", newline="\n")
+        for relative in sorted(files):
+            target = output / relative
+            target.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(staging / relative, target)
+            written.append(target)
+    except OSError as error:
+        raise GenerationError(f"cannot write to '{output}': {error.strerror}") from None
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return written
