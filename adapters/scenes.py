@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import os
+import weakref
 from dataclasses import dataclass, field
 
 import mujoco
@@ -69,6 +70,23 @@ def thread_torque(depth: float) -> float:
     return THREAD_TORQUE_START + (THREAD_TORQUE_END - THREAD_TORQUE_START) * s
 
 
+_THREAD_ADDRESSES: weakref.WeakKeyDictionary[mujoco.MjModel, tuple[int, int]] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+def _thread_addresses(model: mujoco.MjModel) -> tuple[int, int]:
+    """qpos address of the screw slide and dof address of the screw hinge (cached per model)."""
+    found = _THREAD_ADDRESSES.get(model)
+    if found is None:
+        found = (
+            int(model.jnt_qposadr[model.joint("screw_slide").id]),
+            int(model.jnt_dofadr[model.joint("screw_hinge").id]),
+        )
+        _THREAD_ADDRESSES[model] = found
+    return found
+
+
 def scene_step(scene_name: str, model: mujoco.MjModel, data: mujoco.MjData) -> None:
     """Per-step hook; adapters call it before every ``mj_step`` of the scene (1 kHz hot path).
 
@@ -79,8 +97,8 @@ def scene_step(scene_name: str, model: mujoco.MjModel, data: mujoco.MjData) -> N
     """
     if scene_name != "screwing" and scene_key(scene_name) != "screwing":
         return
-    depth = float(data.qpos[model.jnt_qposadr[model.joint("screw_slide").id]])
-    model.dof_frictionloss[model.jnt_dofadr[model.joint("screw_hinge").id]] = thread_torque(depth)
+    slide, hinge = _thread_addresses(model)
+    model.dof_frictionloss[hinge] = thread_torque(float(data.qpos[slide]))
 
 
 def measurements(
