@@ -194,7 +194,7 @@ def layering(context: object) -> Iterator[Finding]:
                 yield (
                     info.state.position,
                     f"a {layer} cannot use the {child} '{info.imported.name}'",
-                    f"a {layer} uses {' and '.join(sorted(MAY_USE[layer]))}s",
+                    f"a {layer} uses {' and '.join(f'{m}s' for m in sorted(MAY_USE[layer]))}",
                 )
 
 
@@ -352,6 +352,8 @@ def no_reference_cycle(context: object) -> Iterator[Finding]:
         graph.add_edge(source, target)
         where.setdefault((source, target), position)
     for cycle in nx.simple_cycles(graph):
+        first = cycle.index(min(cycle))  # start at the smallest name: same report every run
+        cycle = cycle[first:] + cycle[:first]
         edge = (cycle[0], cycle[1 % len(cycle)])
         path = " -> ".join([*cycle, cycle[0]])
         yield (where[edge], f"cyclic <<import>>/<<extends>>: {path}", "")
