@@ -17,7 +17,7 @@ from workbench import report
 from workbench.check import all_cocos, check
 from workbench.diagnostics import Diagnostics
 from workbench.files import write_atomic
-from workbench.generators import GenerationError, GenerationRequest, generators, write_all
+from workbench.generators import GenerationError, GenerationRequest, load_generator, write_all
 from workbench.languages import extensions, language_for, languages
 from workbench.modelpath import model_files
 
@@ -133,9 +133,10 @@ def _configure_generate(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_generate)
 def cmd_generate(args: argparse.Namespace) -> int:
-    available = generators()
-    if args.target not in available:
-        raise UsageError(f"unknown target '{args.target}'; known: {', '.join(available)}")
+    try:
+        generator = load_generator(args.target)
+    except GenerationError as error:
+        raise UsageError(str(error)) from None
     options = dict(_option(o) for o in args.option)
     templates = existing_paths([args.templates])[0] if args.templates else None
     paths = existing_paths(args.models)
@@ -146,7 +147,7 @@ def cmd_generate(args: argparse.Namespace) -> int:
     files = [f.resolve() for p in paths for f in model_files(p, extensions())]
     request = GenerationRequest(context, files, options, templates)
     try:
-        written = write_all(Path(args.output), available[args.target].generate(request))
+        written = write_all(Path(args.output), generator.generate(request))
     except GenerationError as error:
         print(f"lightrocks: error: {error}", file=sys.stderr)
         return EXIT_FINDINGS

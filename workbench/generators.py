@@ -47,10 +47,21 @@ class GenerationError(Exception):
     """A problem the user can fix (bad option, output folder not writable, …)."""
 
 
+def generator_names() -> list[str]:
+    return sorted(entry.name for entry in entry_points(group="lightrocks.generators"))
+
+
 @cache
-def generators() -> dict[str, Generator]:
-    found = sorted(entry_points(group="lightrocks.generators"), key=lambda e: e.name)
-    return {entry.name: entry.load() for entry in found}
+def load_generator(name: str) -> Generator:
+    """The generator registered as ``name``; only that one is imported."""
+    found = [e for e in entry_points(group="lightrocks.generators") if e.name == name]
+    if not found:
+        known = ", ".join(generator_names())
+        raise GenerationError(f"unknown target '{name}'; known targets: {known}")
+    try:
+        return found[0].load()
+    except (ImportError, AttributeError) as error:
+        raise GenerationError(f"target '{name}' cannot be loaded: {error}") from None
 
 
 def template_environment(builtin: Path, override: Path | None) -> jinja2.Environment:
