@@ -10,14 +10,14 @@ printers visit the elements in source order and tell the writer where each one s
 (:meth:`Writer.item`) and where each block ends (:meth:`Writer.close`). Before an element,
 the writer emits every comment that precedes it in the source, in source order:
 
-* a comment after code on its line is appended to the printed line that came from that
-  source line (a trailing comment stays trailing);
+* a comment after code on its line is appended to the last printed line, when that line
+  came from the comment's source line or an earlier one (a trailing comment stays trailing,
+  also when it trailed a later line of an element that spans several lines);
 * any other comment goes on a line of its own, indented like the element that follows it,
   or like the elements of the block when it stands before a closing brace or at file end.
 
-So no comment is ever dropped and their order never changes. A comment inside an element
-that is printed on one line but spanned several lines in the source ends up on its own line
-after that element.
+So no comment is ever dropped and their order never changes. A comment on a line of its own
+inside an element (say, between two arguments) ends up on its own line after that element.
 """
 
 from __future__ import annotations
@@ -317,7 +317,7 @@ class Writer:
         """Print the comments before ``limit``; whether the blank of ``separate`` is still due."""
         while self._pending and self._pending[0].start < limit:
             comment = self._pending.popleft()
-            if not comment.own_line and self._origins and self._origins[-1] == comment.line:
+            if not comment.own_line and 0 < self._last_origin() <= comment.line:
                 self._code_widths.setdefault(len(self._lines) - 1, len(self._lines[-1]))
                 self._lines[-1] += " " + comment.text
                 continue
@@ -327,9 +327,12 @@ class Writer:
             self._emit(comment.text, comment.end_line)
         return separate
 
+    def _last_origin(self) -> int:
+        return self._origins[-1] if self._origins else 0
+
     def _source_blank_before(self, line: int) -> bool:
         """Whether the source has a blank line right before ``line``, after what is printed."""
-        last = self._origins[-1] if self._origins else 0
+        last = self._last_origin()
         return bool(self._source) and line - 1 > last and self._source.blank(line - 1)
 
     def _blank(self) -> None:
