@@ -17,8 +17,11 @@ from metamodel.comments import Comments
 
 ROOT = Path(__file__).parents[2]
 FILES = sorted(
-    [*ROOT.glob("examples/**/*.lr"), *ROOT.glob("examples/**/*.lrd")]
-    + [*ROOT.glob("languages/domain/library/**/*.lrd")]
+    [
+        *ROOT.glob("examples/**/*.lr"),
+        *ROOT.glob("examples/**/*.lrd"),
+        *ROOT.glob("languages/domain/library/**/*.lrd"),
+    ]
 )
 LANGUAGES = {
     ".lr": (parse_statechart, format_statechart_text),
