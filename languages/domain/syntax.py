@@ -80,4 +80,6 @@ def parse_domain(text: str, file: str) -> ast.DomainUnit:
     """Parse one ``.lrd`` text; raises ``metamodel.grammar.SyntaxProblem``."""
     with paused_gc():
         tree = parse(GRAMMAR, FRAGMENTS, text, file)
+        if isinstance(tree, str):  # textX yields '' for a file with nothing but comments
+            return ast.DomainUnit("", (), (), file, ast.Position(file, 1, 1))
         return DomainConverter(text, file).convert(tree)
