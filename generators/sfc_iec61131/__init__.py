@@ -1,1 +1,59 @@
-"""LightRocks sfc_iec61131 package."""
+"""IEC 61131-3 textual SFC: one compilation unit (``<Top>.st``) per selected task or skill."""
+
+from __future__ import annotations
+
+from collections import Counter
+from pathlib import Path
+
+from generators.selection import is_action, selected
+from generators.sfc_iec61131.build import Unit, UnitBuilder
+from generators.sfc_iec61131.checker import check_sfc
+from generators.sfc_iec61131.expressions import time_literal
+from languages.lightrocks.analysis import analysis
+from workbench.generators import GenerationError, GenerationRequest, template_environment
+
+TEMPLATES = Path(__file__).parent / "templates"
+
+
+def prioritize(unit: Unit) -> None:
+    """Number the branches of every selective divergence: MatIEC would run them all."""
+    for block in unit.blocks:
+        counts = Counter(t.source for t in block.transitions)
+        given = Counter()
+        for transition in block.transitions:
+            if counts[transition.source] > 1:
+                given[transition.source] += 1
+                transition.priority = given[transition.source]
+
+
+class SfcGenerator:
+    name = "sfc"
+    description = "IEC 61131-3 textual SFC for PLCs (option interval_ms=1: the task cycle)"
+
+    def generate(self, request: GenerationRequest) -> dict[str, str]:
+        environment = template_environment(TEMPLATES, request.templates)
+        interval = request.options.get("interval_ms", "1")
+        if not interval.isdigit() or int(interval) == 0:
+            raise GenerationError(f"option interval_ms='{interval}' is not a whole number > 0")
+        typing = analysis(request.context).typing
+        files: dict[str, str] = {}
+        for top in selected(request):
+            if is_action(top):
+                continue
+            unit = UnitBuilder(top, typing).build()
+            prioritize(unit)
+            text = environment.get_template("unit.st.jinja").render(
+                unit=unit,
+                interval=time_literal(int(interval) / 1000),
+            )
+            problems = check_sfc(text)
+            if problems:
+                listing = "\n".join(f"  {p}" for p in problems)
+                raise GenerationError(f"generated SFC of {top.name} fails the check:\n{listing}")
+            files[f"{top.name}.st"] = text
+        if not files:
+            raise GenerationError("no task or skill among the selected models")
+        return files
+
+
+GENERATOR = SfcGenerator()
