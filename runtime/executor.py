@@ -1,0 +1,357 @@
+"""The executor: run-to-completion steps over the state tree, one thread, adapter time.
+
+A step starts with ``start()`` or ``send(event)`` and ends when every active state rests:
+in a simple state waiting for an event, or with the top state finished. Entering an action
+state runs its device command to its outcome inside the step (the adapter blocks), so a
+LightRocks task runs to its end within ``start()``.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import Any
+
+from runtime.contract import TIMEOUT, Adapter, CommandResult, Snapshot, StopCondition
+from runtime.environment import Environment, SceneObject, object_name
+from runtime.states import Action, Composite, State, Transition
+from runtime.trace import Trace, to_json
+
+ERROR, PREEMPTED = "error", "preempted"
+EVENT_STOP = "@event"
+
+
+@dataclass
+class Fault:
+    """Why a state ended with ``error``, and the states the error passed through."""
+
+    message: str
+    location: str
+    origin: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Preemption:
+    """A running action was stopped for an enclosing end condition or an event."""
+
+    action: Action
+    owner: Composite | None = None
+    outcome: str = ""
+    event: str = ""
+
+
+Done = tuple[State, str] | Preemption | None
+
+
+class Executor:
+    def __init__(self, top: State, adapter: Adapter | None, trace: Trace, env: Environment):
+        self.top = top
+        self.adapter = adapter
+        self.trace = trace
+        self.env = env
+        self.fault: Fault | None = None
+        self.finished = False
+        self.outcome: str | None = None
+        self.events: deque[str] = deque()
+        self._busy = False
+        self._idle = SimpleNamespace(time=0.0)
+
+    # -- clock and sensors ----------------------------------------------------------------
+
+    @property
+    def time(self) -> float:
+        return self.adapter.time if self.adapter is not None else 0.0
+
+    def snapshot(self) -> Snapshot:
+        return self.adapter.snapshot() if self.adapter is not None else self._idle
+
+    def _write(self, kind: str, **fields: Any) -> None:
+        self.trace.write(self.time, kind, **fields)
+
+    # -- public steps ---------------------------------------------------------------------
+
+    def start(self) -> None:
+        self._step(lambda: self._enter(self.top, self.snapshot()))
+
+    def send(self, event: str) -> bool:
+        """Dispatch one event; while a command runs it is queued and may preempt it."""
+        if self._busy:
+            self.events.append(event)
+            return True
+        handled = []
+
+        def dispatch() -> Done:
+            self._write("event", name=event)
+            done = self._dispatch(event, self.snapshot())
+            handled.append(done is not False)
+            if done is False:
+                self._write("discarded", name=event)
+                return None
+            return done
+
+        self._step(dispatch)
+        return handled[0]
+
+    def active(self) -> list[State]:
+        """The active states from the top down to the innermost one."""
+        if self.finished:
+            return []
+        chain: list[State] = [self.top]
+        while isinstance(chain[-1], Composite) and chain[-1].current is not None:
+            chain.append(chain[-1].current)
+        return chain
+
+    # -- run to completion ----------------------------------------------------------------
+
+    def _step(self, begin: Any) -> None:
+        self._busy = True
+        try:
+            done = begin()
+            while True:
+                while done is not None:
+                    if isinstance(done, Preemption):
+                        done = self._preempt(done)
+                    else:
+                        done = self._complete(*done)
+                done = self._check_invariants()
+                if done is None and self.events and not self.finished:
+                    event = self.events.popleft()
+                    self._write("event", name=event)
+                    done = self._dispatch(event, self.snapshot()) or None
+                if done is None:
+                    return
+        finally:
+            self._busy = False
+
+    def _enter(self, state: State, s: Snapshot) -> Done:
+        """Enter ``state`` and descend until something rests or completes."""
+        while True:
+            parent = state.parent
+            if parent is not None:
+                parent.current = state
+                if state.name in parent.BINDINGS:  # an <<import>> state: arguments now
+                    state.given = parent.BINDINGS[state.name](parent, s)
+            self._write("enter", state=state.path, layer=state.LAYER)
+            initialize = getattr(state, "initialize", None)
+            if initialize is not None:
+                initialize(s)
+            state.on_entry(s)
+            violated = self._violated(state, s)
+            if violated is not None:
+                return violated
+            if state.FINAL:
+                return (state.parent, state.name) if state.parent is not None else (state, "")
+            if isinstance(state, Action):
+                return self._execute(state, s)
+            if not isinstance(state, Composite):
+                return None
+            first = self._first_child(state, s)
+            if not isinstance(first, State):
+                return first
+            state = first
+
+    def _first_child(self, state: Composite, s: Snapshot) -> State | Done:
+        """The child a composite starts in: through the first start condition that holds."""
+        if state.STARTS:
+            for condition in state.STARTS:
+                if condition.holds is None or condition.holds(state, s):
+                    for transition in state.transitions_from(condition.name):
+                        if transition.guard is None or transition.guard(state, s):
+                            return self._take(state, transition, s, enter=False)
+            return self._error(state, "no start condition holds", state.LOCATION)
+        if state.INITIAL is not None:
+            return state.children[state.INITIAL]
+        return self._error(state, "no start condition and no initial state", state.LOCATION)
+
+    def _take(self, owner: Composite, t: Transition, s: Snapshot, enter: bool = True) -> Any:
+        """Fire a transition whose source has been left: action, postcondition, target."""
+        self._write("transition", state=owner.path, source=t.source, target=t.target,
+                    stimulus=t.stimulus)  # fmt: skip
+        if t.action is not None:
+            t.action(owner, s)
+        if t.post is not None and not t.post(owner, s):
+            return self._error(owner, "postcondition violated", t.location)
+        if t.target in owner.end_names:
+            return (owner, t.target)
+        target = owner.children[t.target]
+        return self._enter(target, s) if enter else target
+
+    def _complete(self, state: State, outcome: str) -> Done:
+        """``state`` ended with ``outcome``: leave it and let its parent react."""
+        fields: dict[str, Any] = {"state": state.path, "outcome": outcome}
+        if outcome == ERROR and self.fault is not None:
+            fields["origin"] = list(self.fault.origin)
+        self._write("outcome", **fields)
+        s = self.snapshot()
+        self._exit(state, s)
+        parent = state.parent
+        if parent is None:
+            self.finished, self.outcome = True, outcome
+            self._write("finished", outcome=outcome)
+            return None
+        for transition in parent.transitions_from(state.name):
+            if _matches(transition, outcome, state) and (
+                transition.guard is None or transition.guard(parent, s)
+            ):
+                if outcome == ERROR:
+                    self.fault = None
+                return self._take(parent, transition, s)
+        if outcome == ERROR and self.fault is not None:
+            self.fault.origin.append(parent.path)
+            return (parent, ERROR)
+        return self._error(parent, f"unhandled outcome '{outcome}' of {state.path}", "")
+
+    def _exit(self, state: State, s: Snapshot) -> None:
+        """Leave ``state`` and its active descendants, innermost first."""
+        if isinstance(state, Composite) and state.current is not None:
+            self._exit(state.current, s)
+        state.on_exit(s)
+        self._write("exit", state=state.path)
+        if state.parent is not None:
+            state.parent.current = None
+
+    def _error(self, state: State, message: str, location: str) -> tuple[State, str]:
+        self.fault = Fault(message, location, [state.path])
+        self._write("error", state=state.path, message=message, location=location)
+        return (state, ERROR)
+
+    # -- events ---------------------------------------------------------------------------
+
+    def _find(self, event: str, s: Snapshot) -> tuple[State, Transition] | None:
+        """The innermost active state with an enabled transition for ``event``."""
+        for state in reversed(self.active()):
+            parent = state.parent
+            if parent is None:
+                continue
+            for transition in parent.transitions_from(state.name):
+                if transition.stimulus == event and (
+                    transition.guard is None or transition.guard(parent, s)
+                ):
+                    return state, transition
+        return None
+
+    def _dispatch(self, event: str, s: Snapshot) -> Done | bool:
+        found = self._find(event, s)
+        if found is None:
+            return False
+        state, transition = found
+        self._exit(state, s)
+        return self._take(state.parent, transition, s)
+
+    # -- actions --------------------------------------------------------------------------
+
+    def _execute(self, action: Action, s: Snapshot) -> Done:
+        """Run the device command until an end condition, a preemption or the budget."""
+        if self.adapter is None:
+            return self._error(action, "no adapter bound to run a device command", action.LOCATION)
+        arguments = {
+            k: object_name(v) if isinstance(v, SceneObject) else v
+            for k, v in action.arguments(s).items()
+        }
+        stops = [StopCondition(c.name, _bound(c.holds, action)) for c in action.ENDS]
+        preemptions = self._preemptions(action)
+        stops += [StopCondition(key, holds) for key, (_, _, holds) in preemptions.items()]
+        stops.append(StopCondition(EVENT_STOP, lambda snap: self._find_queued(snap)))
+        self._write("command", state=action.path, device=action.DEVICE, command=action.COMMAND,
+                    budget=action.BUDGET)  # fmt: skip
+        try:
+            result = self.adapter.execute(
+                action.DEVICE, action.COMMAND, arguments, stops, action.BUDGET
+            )
+        except Exception as exc:  # an adapter fault of any kind becomes the outcome `error`
+            self._hold()
+            where = f"{action.DEVICE}.{action.COMMAND}"
+            return self._error(action, f"adapter fault in {where}: {exc}", action.LOCATION)
+        names = {c.name for c in action.ENDS}
+        if not isinstance(result, CommandResult) or (
+            result.outcome not in names | set(preemptions) | {TIMEOUT, EVENT_STOP}
+        ):
+            self._hold()
+            message = f"adapter broke the contract: {result!r} is no outcome of this command"
+            return self._error(action, message, action.LOCATION)
+        self._write("stop", state=action.path, outcome=result.outcome,
+                    sensors=self._sensors(action))  # fmt: skip
+        if result.outcome in preemptions:
+            self._hold()
+            owner, outcome, _ = preemptions[result.outcome]
+            return Preemption(action, owner, outcome)
+        if result.outcome == EVENT_STOP:
+            self._hold()
+            return Preemption(action, event=self.events.popleft())
+        if result.outcome == TIMEOUT:
+            self._hold()
+        elif result.value is not None:
+            action.store(result.value)
+        return (action, result.outcome)
+
+    def _preemptions(self, action: Action) -> dict[str, tuple[Composite, str, Any]]:
+        """Stop predicates for the end-condition expressions of every enclosing state."""
+        found = {}
+        owner = action.parent
+        while owner is not None:
+            for condition in owner.ENDS:
+                if condition.holds is not None:
+                    key = f"{owner.path}#{condition.name}"
+                    found[key] = (owner, condition.name, _bound(condition.holds, owner))
+            owner = owner.parent
+        return found
+
+    def _find_queued(self, s: Snapshot) -> bool:
+        while self.events:
+            if self._find(self.events[0], s) is not None:
+                return True
+            self._write("discarded", name=self.events.popleft())
+        return False
+
+    def _preempt(self, preemption: Preemption) -> Done:
+        action = preemption.action
+        self._write("outcome", state=action.path, outcome=PREEMPTED)
+        if preemption.owner is not None:
+            return (preemption.owner, preemption.outcome)
+        self._write("event", name=preemption.event)
+        s = self.snapshot()
+        return self._dispatch(preemption.event, s) or None
+
+    def _hold(self) -> None:
+        try:
+            self.adapter.hold()
+        except Exception as exc:  # holding is best effort; the fault is reported anyway
+            self._write("error", state=self.top.path, message=f"hold failed: {exc}", location="")
+
+    def _sensors(self, action: Action) -> dict[str, Any]:
+        if not action.SENSORS:
+            return {}
+        snapshot = self.snapshot()
+        return {
+            f"{device}.{sensor}": to_json(getattr(getattr(snapshot, device), sensor))
+            for device, sensor in action.SENSORS
+        }
+
+    # -- contracts ------------------------------------------------------------------------
+
+    def _violated(self, state: State, s: Snapshot) -> tuple[State, str] | None:
+        for invariant in state.INVARIANTS:
+            if not invariant.holds(state, s):
+                return self._error(state, "invariant violated", invariant.location)
+        return None
+
+    def _check_invariants(self) -> Done:
+        if self.finished:
+            return None
+        s = self.snapshot()
+        for state in self.active():
+            violated = self._violated(state, s)
+            if violated is not None:
+                return violated
+        return None
+
+
+def _matches(transition: Transition, outcome: str, child: State) -> bool:
+    """The stimulus names the outcome, or is empty and the outcome is a declared one."""
+    stimulus = transition.stimulus
+    return stimulus == outcome or (not stimulus and outcome in child.OUTCOMES)
+
+
+def _bound(holds: Any, owner: State) -> Any:
+    return lambda s: bool(holds(owner, s))

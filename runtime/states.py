@@ -1,0 +1,122 @@
+"""The state pattern of the LightRocks paper: states with a parent and a current child.
+
+Generated code subclasses these classes and fills their class-level tables (children,
+transitions, start and end conditions, invariants) with functions compiled from the model;
+the :mod:`runtime.executor` interprets the tables. A table function takes the state that owns
+it and the current sensor snapshot: ``guard(owner, s) -> bool``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from runtime.contract import Snapshot
+
+Predicate = Callable[[Any, Snapshot], bool]
+Effect = Callable[[Any, Snapshot], None]
+
+
+@dataclass(frozen=True)
+class Transition:
+    """``source -> target [guard] stimulus / action [post]`` between children of one state."""
+
+    source: str
+    target: str
+    stimulus: str = ""
+    guard: Predicate | None = None
+    action: Effect | None = None
+    post: Predicate | None = None
+    location: str = ""
+
+
+@dataclass(frozen=True)
+class Condition:
+    """A start or end condition; without ``holds`` it is a pure entry/exit point."""
+
+    name: str
+    holds: Predicate | None = None
+    location: str = ""
+
+
+@dataclass(frozen=True)
+class Invariant:
+    holds: Predicate
+    location: str = ""
+
+
+class State:
+    """A state: a name, a parent, entry/exit actions and invariants."""
+
+    NAME: ClassVar[str] = ""
+    LOCATION: ClassVar[str] = ""
+    FINAL: ClassVar[bool] = False
+    LAYER: ClassVar[str | None] = None
+    OUTCOMES: ClassVar[tuple[str, ...]] = ()
+    INVARIANTS: ClassVar[tuple[Invariant, ...]] = ()
+
+    def __init__(self, parent: Composite | None = None, name: str | None = None) -> None:
+        self.name = name or self.NAME
+        self.parent = parent
+        self.path: str = f"{parent.path}/{self.name}" if parent is not None else self.name
+
+    def on_entry(self, s: Snapshot) -> None:
+        """Entry action (generated when the model has one)."""
+
+    def on_exit(self, s: Snapshot) -> None:
+        """Exit action (generated when the model has one); μ of an elemental action."""
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.path}>"
+
+
+class Composite(State):
+    """A hierarchical state: children, transitions between them, start and end conditions."""
+
+    CHILDREN: ClassVar[Mapping[str, type[State]]] = {}
+    INITIAL: ClassVar[str | None] = None
+    STARTS: ClassVar[tuple[Condition, ...]] = ()
+    ENDS: ClassVar[tuple[Condition, ...]] = ()
+    TRANSITIONS: ClassVar[tuple[Transition, ...]] = ()
+    BINDINGS: ClassVar[Mapping[str, Callable[[Any, Snapshot], dict[str, Any]]]] = {}
+
+    def __init__(self, parent: Composite | None = None, name: str | None = None) -> None:
+        super().__init__(parent, name)
+        self.current: State | None = None
+        self.children: dict[str, State] = {n: c(self, n) for n, c in self.CHILDREN.items()}
+        self.end_names = frozenset(c.name for c in self.ENDS)
+
+    def transitions_from(self, source: str) -> tuple[Transition, ...]:
+        """Transitions leaving ``source`` in declaration order (indexed once per class)."""
+        index = type(self).__dict__.get("_index")
+        if index is None:
+            index = {}
+            for transition in self.TRANSITIONS:
+                index.setdefault(transition.source, []).append(transition)
+            index = {k: tuple(v) for k, v in index.items()}
+            type(self)._index = index
+        return index.get(source, ())
+
+
+class Final(State):
+    """A final state: entering it completes its parent with the final state's name."""
+
+    FINAL = True
+
+
+class Action(State):
+    """An elemental action: one device command; its end conditions are the stop conditions."""
+
+    DEVICE: ClassVar[str] = ""
+    COMMAND: ClassVar[str] = ""
+    BUDGET: ClassVar[float] = 30.0
+    ENDS: ClassVar[tuple[Condition, ...]] = ()
+    SENSORS: ClassVar[tuple[tuple[str, str], ...]] = ()
+
+    def arguments(self, s: Snapshot) -> dict[str, Any]:
+        """The command's arguments by name, in SI (generated)."""
+        return {}
+
+    def store(self, value: Any) -> None:
+        """Keep what the command returned (``do / obj.attr = dev.cmd(…)``; generated)."""

@@ -1,0 +1,65 @@
+"""The run trace: one JSON object per line (time, kind, state, …) that tools and tests read."""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable
+from pathlib import Path
+from typing import IO, Any
+
+import numpy as np
+
+from runtime.contract import Vector3, Wrench
+from runtime.environment import SceneObject, object_name
+from runtime.frames import Frame
+
+Record = dict[str, Any]
+
+
+def to_json(value: Any) -> Any:
+    """A JSON-friendly copy of a sensor or parameter value (frames as their translation)."""
+    if isinstance(value, bool | str) or value is None:
+        return value
+    if isinstance(value, int | float | np.floating | np.integer):
+        number = float(value)
+        return number if math.isfinite(number) else str(number)
+    if isinstance(value, Frame):
+        return [float(v) for v in value.translation]
+    if isinstance(value, Vector3):
+        return [value.x, value.y, value.z]
+    if isinstance(value, Wrench):
+        return {"force": to_json(value.force), "torque": to_json(value.torque)}
+    if isinstance(value, SceneObject):
+        return object_name(value)
+    if isinstance(value, np.ndarray | list | tuple):
+        return [to_json(v) for v in value]
+    return repr(value)
+
+
+class Trace:
+    """Collects records in memory, optionally writes them as JSON lines, and tells listeners."""
+
+    def __init__(self, file: str | Path | IO[str] | None = None) -> None:
+        self.records: list[Record] = []
+        self.listeners: list[Callable[[Record], None]] = []
+        self._owned = isinstance(file, str | Path)
+        self._stream: IO[str] | None = (
+            open(file, "w", encoding="utf-8") if isinstance(file, str | Path) else file  # noqa: SIM115
+        )
+
+    def write(self, time: float, kind: str, **fields: Any) -> None:
+        record: Record = {"time": round(time, 9), "kind": kind, **fields}
+        self.records.append(record)
+        if self._stream is not None:
+            self._stream.write(json.dumps(record) + "\n")
+        for listener in self.listeners:
+            listener(record)
+
+    def close(self) -> None:
+        if self._stream is not None and self._owned:
+            self._stream.close()
+        self._stream = None
+
+    def of_kind(self, *kinds: str) -> list[Record]:
+        return [r for r in self.records if r["kind"] in kinds]
