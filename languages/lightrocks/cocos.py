@@ -149,10 +149,11 @@ def stimulus_is_outcome(context: object) -> Iterator[Finding]:
                 continue
             outcomes = (*source.outcomes, *BUILTIN_OUTCOMES)
             if transition.stimulus not in outcomes:
+                known = ", ".join(source.outcomes) or "it has none"
                 yield (
                     transition.stimulus_position,
                     f"'{transition.stimulus}' is not an outcome of '{source.name}' "
-                    f"({', '.join(source.outcomes)}); it is taken as an external event",
+                    f"({known}); it is taken as an external event",
                     did_you_mean(transition.stimulus, outcomes),
                 )
 

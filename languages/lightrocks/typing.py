@@ -125,7 +125,8 @@ class Typing:
                     env,
                     info.state.position,
                 )
-            elif info.state.arguments:
+            elif info.state.arguments and not ast.stereotype(info.state.stereotypes, "import"):
+                # an unresolved <<import>> is reported once, as LR0104
                 self.report(
                     "LR0301",
                     info.state.position,

@@ -520,6 +520,14 @@ import actions.*;
 # More failing models for codes with several distinct ways to fail.
 CASES += [
     Case(
+        "LR0104",
+        variant="with-arguments",  # no second finding about the arguments of an unresolved state
+        ok={},
+        bad={"skills/Pick.lr": replace(PICK, '<<import="Move">>', '<<@@import="Mvoe">>')},
+        message="<<import>> target 'Mvoe' does not resolve to a statechart",
+        hint="did you mean 'Move'?",
+    ),
+    Case(
         "LR0002",
         variant="utf8",
         ok={"misc/Lone.lr": LONE},
