@@ -1,0 +1,24 @@
+"""Ecore/XMI: ``lightrocks.ecore`` and one ``<qualified name>.xmi`` per selected statechart."""
+
+from __future__ import annotations
+
+from generators.selection import selected
+from metamodel.ecore import metamodel_text, model_text
+from workbench.generators import GenerationError, GenerationRequest
+
+
+class EcoreGenerator:
+    name = "ecore"
+    description = "the Ecore metamodel (lightrocks.ecore) and each statechart as XMI"
+
+    def generate(self, request: GenerationRequest) -> dict[str, str]:
+        files = {"lightrocks.ecore": metamodel_text()}
+        for component in selected(request):
+            name = f"{component.qualified_name}.xmi"
+            files[name] = model_text(component.unit, name)
+        if len(files) == 1:
+            raise GenerationError("no statechart among the selected models")
+        return files
+
+
+GENERATOR = EcoreGenerator()
