@@ -12,7 +12,7 @@ from pathlib import Path
 from textx import generator
 
 from workbench.check import check
-from workbench.generators import GenerationError, GenerationRequest, generators, write_all
+from workbench.generators import GenerationError, GenerationRequest, load_generator, write_all
 
 
 def _run(target: str, model, output_path: str | None) -> None:
@@ -22,7 +22,7 @@ def _run(target: str, model, output_path: str | None) -> None:
         raise GenerationError("\n".join(str(d) for d in context.diagnostics.items))
     request = GenerationRequest(context, [file])
     output = Path(output_path) if output_path else file.parent
-    write_all(output, generators()[target].generate(request))
+    write_all(output, load_generator(target).generate(request))
 
 
 @generator("lightrocks", "sfc")
