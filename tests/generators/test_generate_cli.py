@@ -1,0 +1,67 @@
+"""``lightrocks generate`` and ``lightrocks list generators`` for sfc, dot and ecore."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+from conftest import EXAMPLES, SCREW_IN, SCREW_TASK
+
+from workbench import generators
+from workbench.cli import main
+
+
+def _generate(output, *extra: str) -> int:
+    args = [str(SCREW_TASK), "--path", str(EXAMPLES), "--target", "sfc", "-o", str(output)]
+    return main(["generate", *args, *extra])
+
+
+def test_list_generators(capsys) -> None:
+    assert main(["list", "generators"]) == 0
+    listed = capsys.readouterr().out
+    for line in ("sfc  generators.sfc_iec61131:GENERATOR", "dot  generators.graphviz:GENERATOR"):
+        assert line in listed
+    assert "ecore  generators.ecore:GENERATOR" in listed
+
+
+@pytest.mark.parametrize("target", ["sfc", "dot", "ecore"])
+def test_each_target_writes_files(tmp_path, target: str) -> None:
+    args = [str(SCREW_IN), "--path", str(EXAMPLES), "--target", target, "-o", str(tmp_path)]
+    assert main(["generate", *args]) == 0
+    assert [p for p in tmp_path.iterdir() if not p.name.startswith(".")]
+
+
+def test_options_and_templates_reach_the_generator(tmp_path) -> None:
+    templates = tmp_path / "templates"
+    templates.mkdir()
+    (templates / "header.st.jinja").write_text("(* site header *)\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    assert _generate(out, "--templates", str(templates), "--option", "interval_ms=4") == 0
+    text = (out / "ScrewTask.st").read_text()
+    assert text.startswith("(* site header *)")
+    assert "INTERVAL := T#4ms" in text
+
+
+def test_missing_output_folder(tmp_path, capsys) -> None:
+    assert _generate(tmp_path / "missing") == 1
+    assert "does not exist" in capsys.readouterr().err
+    assert not (tmp_path / "missing").exists()
+
+
+def test_read_only_output_folder(tmp_path, capsys, monkeypatch) -> None:
+    out = tmp_path / "out"
+    out.mkdir()
+    out.chmod(0o555)
+    if os.geteuid() == 0:  # root writes anyway: make the staging folder fail as it would
+
+        def refuse(*args, **kwargs):
+            raise PermissionError(13, "Permission denied")
+
+        monkeypatch.setattr(generators.tempfile, "mkdtemp", refuse)
+    try:
+        assert _generate(out) == 1
+        assert "cannot write to" in capsys.readouterr().err
+        assert list(out.iterdir()) == []
+    finally:
+        out.chmod(0o755)
