@@ -8,10 +8,12 @@ refreshed every ``SLOW_EVERY`` ticks only, because they change slowly with the c
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pinocchio as pin
 
-from adapters.robot_model import ARM_DOF, NV, TCP_SITE
+from adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
 from adapters.vec import symmetrize_upper
 
 DT = 0.001
@@ -27,20 +29,32 @@ REST_LINEAR = 5e-3
 REST_ANGULAR = 0.02
 REST_JOINT = 0.02
 
-_ZEROS = np.zeros(NV)
 _LOWER = np.tril_indices(ARM_DOF, -1)
 
 
 class ArmState:
-    """Kinematics and dynamics of the robot at the current tick, computed with Pinocchio."""
+    """Kinematics and dynamics of the robot at the current tick, computed with Pinocchio.
+
+    One ``computeJointJacobians`` (which includes the forward kinematics) per tick serves the
+    TCP and ft placements and the TCP Jacobian; the arrays the hot loop reads are cached here
+    once per tick, because every ``SE3.translation``/``rotation`` access makes a copy.
+    """
 
     def __init__(self, model: pin.Model) -> None:
         self.model = model
         self.data = model.createData()
         self.tcp_id = model.getFrameId(TCP_SITE)
-        self.q = np.zeros(NV)
-        self.v = np.zeros(NV)
+        self.ft_id = model.getFrameId(FT_SITE)
+        self.state = np.zeros(2 * NV)
+        """Joint positions then velocities, one array so that a matrix can act on both."""
+        self.q = self.state[:NV]
+        self.v = self.state[NV:]
         self.tcp = pin.SE3.Identity()
+        self.position = np.zeros(3)
+        """TCP position and rotation, copies of ``tcp``'s."""
+        self.rotation = np.eye(3)
+        self.ft = pin.SE3.Identity()
+        """Pose of the wrist force/torque site."""
         self.jacobian = np.zeros((6, ARM_DOF))
         """TCP Jacobian of the arm joints, LOCAL_WORLD_ALIGNED: rows are v, ω in world axes."""
         self.twist = np.zeros(6)
@@ -48,6 +62,7 @@ class ArmState:
         """Coriolis, centrifugal and gravity torques of the arm joints."""
         self.mass_inv = np.eye(ARM_DOF)
         self.mass_diag = np.ones(ARM_DOF)
+        """Replaced (not modified) every SLOW_EVERY ticks, so controllers can cache on identity."""
         self._tick = 0
 
     def update(self, q: np.ndarray, v: np.ndarray) -> None:
@@ -57,12 +72,15 @@ class ArmState:
         self.v[:] = v
         pin.computeJointJacobians(model, data, self.q)
         pin.updateFramePlacement(model, data, self.tcp_id)
-        self.tcp = data.oMf[self.tcp_id]
-        self.jacobian = pin.getFrameJacobian(model, data, self.tcp_id, pin.LOCAL_WORLD_ALIGNED)[
-            :, :ARM_DOF
-        ]
-        self.twist = self.jacobian @ self.v[:ARM_DOF]
-        self.bias = pin.rnea(model, data, self.q, self.v, _ZEROS)[:ARM_DOF]
+        pin.updateFramePlacement(model, data, self.ft_id)
+        self.tcp = tcp = data.oMf[self.tcp_id]
+        self.position = tcp.translation
+        self.rotation = tcp.rotation
+        self.ft = data.oMf[self.ft_id]
+        jacobian = pin.getFrameJacobian(model, data, self.tcp_id, pin.LOCAL_WORLD_ALIGNED)
+        self.jacobian = jacobian[:, :ARM_DOF]
+        self.twist = jacobian @ self.v
+        self.bias = pin.nonLinearEffects(model, data, self.q, self.v)[:ARM_DOF]
         if self._tick % SLOW_EVERY == 0:
             mass = pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF]
             mass = symmetrize_upper(mass.copy(), _LOWER)
@@ -88,7 +106,8 @@ class CartesianImpedance:
     ``2 ζ sqrt`` factorisation, refreshed every SLOW_EVERY ticks). The set point moves on a
     straight line at ``speed`` while its orientation turns about a fixed axis at
     ``angular_speed``; both arrive together. Damping acts on the error velocity, so the set point
-    velocity is fed forward.
+    velocity is fed forward. The per-tick work is a dozen small NumPy calls on preallocated
+    arrays (each costs ~0.5 µs whatever its size, so fewer, larger products win).
     """
 
     def __init__(
@@ -107,86 +126,95 @@ class CartesianImpedance:
         self.ratio = np.asarray(damping, dtype=float)
         self.damping = np.zeros(6)
         self.posture = arm.q[:ARM_DOF].copy()
-        self.nullspace = np.eye(ARM_DOF)
         start = arm.tcp * task
         self._p0 = start.translation.copy()
         self._r0 = start.rotation.copy()
-        self._dp = goal.translation - self._p0
-        self._dr = pin.log3(self._r0.T @ goal.rotation)
+        self._p_goal = goal.translation.copy()
+        self._r_goal = goal.rotation.copy()
+        self._dp = self._p_goal - self._p0
+        self._dr = pin.log3(self._r0.T @ self._r_goal)
         distance, angle = np.linalg.norm(self._dp), np.linalg.norm(self._dr)
         self.duration = max(distance / max(speed, 1e-9), angle / max(angular_speed, 1e-9))
-        self._v_set = np.zeros(3)
-        self._w_set = np.zeros(3)
+        self._twist_set = np.zeros(6)
+        """Set-point velocity (linear, angular; world axes) while moving."""
         if self.duration > 0:
-            self._v_set = self._dp / self.duration
-            self._w_set = self._r0 @ self._dr / self.duration
+            self._twist_set[:3] = self._dp / self.duration
+            self._twist_set[3:] = self._r0 @ self._dr / self.duration
         self.elapsed = 0.0
-        self.final_error = (np.inf, np.inf)
+        self._moving = True
         self._slow_tick = 0
         self._offset = not task.isIdentity()
-        self._world = np.zeros((3, 3))
-        self._wrench_local = np.zeros((3, 2))
+        self._errors = np.zeros((3, 3))
+        """Rows: position error, linear and angular error velocity, world axes."""
+        self._local = np.zeros((3, 3))
+        """The rows of ``_errors`` in task axes."""
+        self._e_rot = np.zeros(3)
+        self._nullspace_posture = np.zeros(ARM_DOF)
+        self._nullspace_state = np.zeros((ARM_DOF, 2 * NV))
+        """Null-space posture torque = ``_nullspace_posture + _nullspace_state @ arm.state``."""
 
     def _refresh_slow_terms(self, arm: ArmState, jac: np.ndarray, rotation: np.ndarray) -> None:
-        """Damping from Λ and the dynamically consistent null-space projector."""
+        """Damping from Λ and the dynamically consistent null-space projector N.
+
+        ``N (K_ns (q₀ − q) − D_ns q̇)`` is split into a constant and a matrix acting on the
+        joint state, so that each tick needs one product for it.
+        """
         lam_inv = jac @ arm.mass_inv @ jac.T
         lam = np.linalg.inv(lam_inv + 1e-6 * np.eye(6))
         lam_local = np.diag(_block_rotate(rotation, lam))
         self.damping = 2.0 * self.ratio * np.sqrt(self.stiffness * np.maximum(lam_local, 0.0))
         jbar = arm.mass_inv @ jac.T @ lam
-        self.nullspace = np.eye(ARM_DOF) - jac.T @ jbar.T
+        nullspace = np.eye(ARM_DOF) - jac.T @ jbar.T
+        self._nullspace_posture = NULLSPACE_STIFFNESS * (nullspace @ self.posture)
+        self._nullspace_state[:, :ARM_DOF] = -NULLSPACE_STIFFNESS * nullspace
+        self._nullspace_state[:, NV : NV + ARM_DOF] = -NULLSPACE_DAMPING * nullspace
 
     def torque(self, arm: ArmState) -> np.ndarray:
         """Joint torques of the arm for this tick; advances the set point by one DT."""
         s = 1.0 if self.duration <= 0 else min(self.elapsed / self.duration, 1.0)
         self.elapsed += DT
-        moving = s < 1.0
-        r_set = self._r0 @ pin.exp3(s * self._dr) if moving else self.goal.rotation
+        self._moving = moving = s < 1.0
 
         if self._offset:
             frame = arm.tcp * self.task
             rot, pos = frame.rotation, frame.translation
             jac = arm.jacobian.copy()
-            jac[:3] -= pin.skew(pos - arm.tcp.translation) @ jac[3:]
+            jac[:3] -= pin.skew(pos - arm.position) @ jac[3:]
             twist = jac @ arm.v[:ARM_DOF]
         else:
-            rot, pos = arm.tcp.rotation, arm.tcp.translation
-            jac, twist = arm.jacobian, arm.twist
+            rot, pos, jac, twist = arm.rotation, arm.position, arm.jacobian, arm.twist
         if self._slow_tick % SLOW_EVERY == 0:
             self._refresh_slow_terms(arm, jac, rot)
         self._slow_tick += 1
 
-        # columns: position error, linear and angular error velocity; rotated to task axes
-        world = self._world
-        world[:, 0] = self._p0 + s * self._dp - pos
-        world[:, 1] = -twist[:3]
-        world[:, 2] = -twist[3:]
+        errors = self._errors
         if moving:
-            world[:, 1] += self._v_set
-            world[:, 2] += self._w_set
-        local = rot.T @ world
-        e_rot = pin.log3(rot.T @ r_set)
-        if moving:
-            self.final_error = (np.inf, np.inf)
+            np.subtract(self._p0 + s * self._dp, pos, out=errors[0])
+            np.subtract(self._twist_set, twist, out=errors[1:].reshape(6))
+            r_set = self._r0 @ pin.exp3(s * self._dr)
         else:
-            self.final_error = (float(np.linalg.norm(local[:, 0])), float(np.linalg.norm(e_rot)))
+            np.subtract(self._p_goal, pos, out=errors[0])
+            np.negative(twist, out=errors[1:].reshape(6))
+            r_set = self._r_goal
+        local = np.matmul(errors, rot, out=self._local)  # row i: Rᵀ errors[i]
+        self._e_rot = e_rot = pin.log3(rot.T @ r_set)
         k, d = self.stiffness, self.damping
-        wrench_local = self._wrench_local
-        wrench_local[:, 0] = k[:3] * local[:, 0] + d[:3] * local[:, 1]
-        wrench_local[:, 1] = k[3:] * e_rot + d[3:] * local[:, 2]
-        wrench = (rot @ wrench_local).T.ravel()
-        posture = NULLSPACE_STIFFNESS * (self.posture - arm.q[:ARM_DOF])
-        posture -= NULLSPACE_DAMPING * arm.v[:ARM_DOF]
-        return jac.T @ wrench + arm.bias + self.nullspace @ posture
+        wrench = k * np.concatenate((local[0], e_rot)) + d * local[1:].reshape(6)
+        wrench = (wrench.reshape(2, 3) @ rot.T).reshape(6)  # back to world axes
+        tau = jac.T @ wrench
+        tau += arm.bias
+        tau += self._nullspace_posture
+        tau += self._nullspace_state @ arm.state
+        return tau
 
     def reached(self, arm: ArmState) -> bool:
-        """Within 1 mm and 0.5° of the final goal and nearly at rest."""
-        e_pos, e_rot = self.final_error
+        """Interpolation done, within 1 mm and 0.5° of the final goal and nearly at rest."""
         return (
-            e_pos < REACHED_POSITION
-            and e_rot < REACHED_ANGLE
-            and np.linalg.norm(arm.twist[:3]) < REST_LINEAR
-            and np.linalg.norm(arm.twist[3:]) < REST_ANGULAR
+            not self._moving
+            and math.sqrt(self._local[0] @ self._local[0]) < REACHED_POSITION
+            and math.sqrt(self._e_rot @ self._e_rot) < REACHED_ANGLE
+            and math.sqrt(arm.twist[:3] @ arm.twist[:3]) < REST_LINEAR
+            and math.sqrt(arm.twist[3:] @ arm.twist[3:]) < REST_ANGULAR
         )
 
 
@@ -194,7 +222,8 @@ class JointImpedance:
     """``τ = K (q_set − q) − D q̇ + bias`` with ``D = 2 ζ sqrt(K M_ii)``.
 
     The set point moves linearly from the start configuration so that the fastest joint runs
-    at JOINT_SPEED; damping acts on the error velocity.
+    at JOINT_SPEED; damping acts on the error velocity. D is recomputed only when the arm
+    state refreshes its mass matrix.
     """
 
     def __init__(
@@ -208,14 +237,20 @@ class JointImpedance:
         self.duration = float(np.max(np.abs(self._dq))) / JOINT_SPEED
         self._v_set = self._dq / self.duration if self.duration > 0 else np.zeros(ARM_DOF)
         self.elapsed = 0.0
+        self._mass_diag: np.ndarray | None = None
+        self._damping = np.zeros(ARM_DOF)
 
     def torque(self, arm: ArmState) -> np.ndarray:
         s = 1.0 if self.duration <= 0 else min(self.elapsed / self.duration, 1.0)
         self.elapsed += DT
         q, v = arm.q[:ARM_DOF], arm.v[:ARM_DOF]
-        damping = 2.0 * self.ratio * np.sqrt(self.stiffness * arm.mass_diag)
+        if arm.mass_diag is not self._mass_diag:
+            self._mass_diag = arm.mass_diag
+            self._damping = 2.0 * self.ratio * np.sqrt(self.stiffness * arm.mass_diag)
         v_set = self._v_set if s < 1.0 else 0.0
-        return self.stiffness * (self._q0 + s * self._dq - q) + damping * (v_set - v) + arm.bias
+        return (
+            self.stiffness * (self._q0 + s * self._dq - q) + self._damping * (v_set - v) + arm.bias
+        )
 
     def reached(self, arm: ArmState) -> bool:
         """Every joint within 0.5° of the goal and nearly at rest."""

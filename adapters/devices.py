@@ -179,7 +179,12 @@ class RobotView:
 
     @property
     def wrench(self) -> Wrench:
-        return Wrench.of(self._cell.wrist.wrench)
+        """Built at most once per tick: several predicates usually read it."""
+        cell = self._cell
+        if cell.wrench_value is None:
+            w = cell.wrist.wrench.tolist()
+            cell.wrench_value = Wrench(Vector3(*w[:3]), Vector3(*w[3:]))
+        return cell.wrench_value
 
     @property
     def q(self) -> np.ndarray:
@@ -191,7 +196,7 @@ class RobotView:
 
     @property
     def travel(self) -> Vector3:
-        return Vector3.of(self._cell.arm.tcp.translation - self._cell.travel_origin)
+        return Vector3(*(self._cell.arm.position - self._cell.travel_origin).tolist())
 
     @property
     def turned(self) -> float:
@@ -269,7 +274,6 @@ class SimulatedCell:
         self.rng = np.random.default_rng(seed)
         self.recorder = recorder
         self.arm = ArmState(load_robot())
-        self._ft_id = self.arm.model.getFrameId(FT_SITE)
         self.wrist = self._make_wrist_sensor()
         self.time = 0.0
         self.grip = -OPEN_FORCE
@@ -279,7 +283,8 @@ class SimulatedCell:
         self._yaw = 0.0
         self.travel_origin = np.zeros(3)
         self._r0 = np.eye(3)
-        self._ft = pin.SE3.Identity()
+        self.wrench_value: Wrench | None = None
+        """The current tick's ``robot.wrench`` once a predicate has read it."""
         self._live = LiveSnapshot(self)
         self._sense()
         self.controller: CartesianImpedance | JointImpedance = JointImpedance(
@@ -369,7 +374,7 @@ class SimulatedCell:
 
     def tare(self) -> None:
         """Zero the wrist sensor: call only when the tool touches nothing."""
-        self.wrist.tare(self.plant.wrist(), self._ft)
+        self.wrist.tare(self.plant.wrist(), self.arm.ft)
 
     # -- commands: each starts its command and returns (settled?, value) ------------------------
 
@@ -436,11 +441,10 @@ class SimulatedCell:
         """Update kinematics and sensors from the plant state."""
         arm = self.arm
         arm.update(self.plant.q, self.plant.v)
-        pin.updateFramePlacement(arm.model, arm.data, self._ft_id)
-        self._ft = arm.data.oMf[self._ft_id]
-        self.wrist.update(self.plant.wrist(), self._ft, arm.tcp)
-        rel = self._r0.T @ arm.tcp.rotation
-        yaw = math.atan2(rel[1, 0], rel[0, 0])
+        self.wrist.update(self.plant.wrist(), arm.ft, arm.position)
+        self.wrench_value = None
+        cos, sin, _ = (arm.rotation[:, 0] @ self._r0).tolist()  # first column of R₀ᵀ R
+        yaw = math.atan2(sin, cos)
         self.turned += (yaw - self._yaw + math.pi) % (2 * math.pi) - math.pi
         self._yaw = yaw
 

@@ -12,6 +12,7 @@ Hooks used, all keyed by scene name:
 
 from __future__ import annotations
 
+import functools
 import importlib
 from collections.abc import Callable
 from types import ModuleType
@@ -55,7 +56,7 @@ def step_hook(scene: str) -> Callable[[mujoco.MjModel, mujoco.MjData], None] | N
     hook = _hook("scene_step")
     if hook is None:
         return None
-    return lambda model, data: hook(scene, model, data)
+    return functools.partial(hook, scene)
 
 
 def fixture_twin(scene: str) -> FixtureTwin | None:

@@ -15,9 +15,9 @@ from adapters.robot_model import (
     FINGER_JOINTS,
     FINGER_TRAVEL,
     FT_SITE,
-    GRIPPER_BAND,
     NV,
     READY_Q,
+    finger_push,
     scene_path,
 )
 
@@ -46,11 +46,11 @@ class MujocoPlant:
         mujoco.mj_forward(self.model, self.data)
         sensor = self.model.sensor
         self._force = int(sensor("ft_force").adr[0])
-        self._torque = int(sensor("ft_torque").adr[0])
+        if int(sensor("ft_torque").adr[0]) != self._force + 3:
+            raise ValueError("sensor ft_torque must follow ft_force in lwr.xml")
         self._site = self.model.site(FT_SITE).id
         self._arm_ctrl = self.data.ctrl[self._ctrl : self._ctrl + ARM_DOF]
         self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
-        self._raw = np.zeros(6)
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
 
@@ -61,9 +61,7 @@ class MujocoPlant:
         GRIPPER_BAND of the end of travel (see robot_model).
         """
         self._arm_ctrl[:] = tau
-        target = 0.0 if grip > 0 else FINGER_TRAVEL
-        fade = np.clip((target - self.q[ARM_DOF:]) / GRIPPER_BAND, -1.0, 1.0)
-        np.multiply(abs(grip), fade, out=self._finger_ctrl)
+        self._finger_ctrl[:] = finger_push(grip, self.q[ARM_DOF:].tolist(), 0.0)
         if self._scene_step is not None:
             self._scene_step(self.model, self.data)
         mujoco.mj_step(self.model, self.data)
@@ -71,10 +69,8 @@ class MujocoPlant:
     def wrist(self) -> np.ndarray:
         """The force/torque sensors (site frame) rotated into world axes."""
         rotation = self.data.site_xmat[self._site].reshape(3, 3)
-        sensordata = self.data.sensordata
-        self._raw[:3] = rotation @ sensordata[self._force : self._force + 3]
-        self._raw[3:] = rotation @ sensordata[self._torque : self._torque + 3]
-        return self._raw.copy()
+        site = self.data.sensordata[self._force : self._force + 6].reshape(2, 3)
+        return (site @ rotation.T).reshape(6)
 
     def sync(self) -> None:
         """``data`` is the simulation itself: always current."""
