@@ -55,6 +55,7 @@ class State:
     LAYER: ClassVar[str | None] = None
     OUTCOMES: ClassVar[tuple[str, ...]] = ()
     INVARIANTS: ClassVar[tuple[Invariant, ...]] = ()
+    env: Any  # the run's runtime.environment.Environment, shared by every state
 
     def __init__(self, parent: Composite | None = None, name: str | None = None) -> None:
         self.name = name or self.NAME

@@ -1,1 +1,5 @@
-"""LightRocks python package."""
+"""The python generator: statecharts as Python modules on :mod:`runtime`."""
+
+from generators.python.generator import GENERATOR, PythonGenerator
+
+__all__ = ["GENERATOR", "PythonGenerator"]

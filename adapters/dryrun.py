@@ -1,0 +1,173 @@
+"""A dry-run adapter: every device of any cell, no physics, simulated time.
+
+Each command "runs" for ``duration`` seconds of simulated time in ticks of ``step``; then it
+ends with the first stop condition that holds on the scripted snapshot, or with the next
+outcome scripted for that command. Useful to walk a task's logic before a simulation, and to
+pin the executor's semantics in tests. Motion is idealised: ``moveCartesian`` puts the TCP at
+its goal, ``close`` makes the gripper hold, ``open`` lets go, ``localize`` answers the pose
+the environment already believes (identity).
+"""
+
+from __future__ import annotations
+
+import inspect
+import typing
+from collections.abc import Callable, Mapping, Sequence
+from types import SimpleNamespace
+from typing import Any
+
+import pinocchio as pin
+
+from runtime.contract import TIMEOUT, AdapterError, CommandResult, StopCondition, Vector3, Wrench
+
+SensorScript = Mapping[str, Any | Callable[[float], Any]]
+
+
+class DryRunAdapter:
+    """Implements :class:`runtime.contract.Adapter` for whatever devices a cell declares.
+
+    ``outcomes`` scripts outcomes per command, ``{"gripper.close": ["empty", "holding"]}``,
+    used one per call (``"error"`` raises an adapter fault, ``"timeout"`` spends the budget);
+    ``sensors`` overrides sensor values, ``{"robot.wrench": Wrench(...)}`` or a function of
+    the time. ``calls`` and ``holds`` record what the runtime asked for.
+    """
+
+    def __init__(
+        self,
+        scene: str | None = None,
+        *,
+        duration: float = 0.1,
+        step: float = 0.01,
+        outcomes: Mapping[str, Sequence[str]] | None = None,
+        sensors: SensorScript | None = None,
+    ) -> None:
+        self.scene = scene
+        self.duration = duration
+        self.step = step
+        self._outcomes = {k: list(v) for k, v in (outcomes or {}).items()}
+        self._script = dict(sensors or {})
+        self._time = 0.0
+        self._types: dict[str, str] = {}
+        self._commands: dict[str, list[str]] = {}
+        self._state: dict[str, dict[str, Any]] = {}
+        self.calls: list[tuple[str, str, dict[str, Any]]] = []
+        self.holds = 0
+
+    # -- what the runtime binds -----------------------------------------------------------
+
+    def emulate(self, devices: Mapping[str, type]) -> None:
+        """Offer the devices of a cell, with sensor values typed by the device protocols."""
+        for instance, protocol in devices.items():
+            self._types[instance] = getattr(protocol, "DEVICE_TYPE", protocol.__name__)
+            hints = typing.get_type_hints(protocol)
+            sensors, commands = {}, []
+            for name, member in vars(protocol).items():
+                if isinstance(member, property):
+                    returns = typing.get_type_hints(member.fget).get("return", hints.get(name))
+                    sensors[name] = _initial(returns)
+                elif inspect.isfunction(member) and not name.startswith("_"):
+                    commands.append(name)
+            self._state[instance] = sensors
+            self._commands[instance] = commands
+
+    def devices(self) -> Mapping[str, str]:
+        return dict(self._types)
+
+    def commands(self) -> Mapping[str, Sequence[str]]:
+        return {k: tuple(v) for k, v in self._commands.items()}
+
+    @property
+    def time(self) -> float:
+        return self._time
+
+    def snapshot(self) -> SimpleNamespace:
+        devices = {}
+        for instance, sensors in self._state.items():
+            values = dict(sensors)
+            for key, value in self._script.items():
+                device, _, sensor = key.partition(".")
+                if device == instance:
+                    values[sensor] = value(self._time) if callable(value) else value
+            devices[instance] = SimpleNamespace(**values)
+        return SimpleNamespace(time=self._time, **devices)
+
+    # -- commands -------------------------------------------------------------------------
+
+    def execute(
+        self,
+        device: str,
+        command: str,
+        args: Mapping[str, Any],
+        stop: Sequence[StopCondition],
+        budget: float,
+    ) -> CommandResult:
+        if command not in self._commands.get(device, ()):
+            raise AdapterError(f"unknown command {device}.{command}")
+        self.calls.append((device, command, dict(args)))
+        scripted = self._outcomes.get(f"{device}.{command}") or []
+        planned = scripted.pop(0) if scripted else None
+        if planned == "error":
+            raise AdapterError(f"scripted fault of {device}.{command}")
+        state = self._state[device]
+        for flag in ("goalReached", "done"):
+            if flag in state:
+                state[flag] = False
+        start, value = self._time, None
+        try:
+            while True:
+                self._time = round(self._time + self.step, 9)
+                elapsed = self._time - start
+                settled = elapsed >= self.duration - 1e-9
+                if settled:
+                    value = self._settle(device, command, args)
+                if settled and planned not in (None, TIMEOUT):
+                    return CommandResult(planned, value)
+                snapshot = self.snapshot()
+                for condition in stop:
+                    if condition.holds(snapshot):
+                        return CommandResult(condition.name, value)
+                if elapsed >= budget - 1e-9:
+                    return CommandResult(TIMEOUT)
+        except AdapterError:
+            raise
+        except Exception as exc:
+            raise AdapterError(f"stop condition of {device}.{command} failed: {exc!r}") from exc
+
+    def _settle(self, device: str, command: str, args: Mapping[str, Any]) -> Any:
+        """The idealised end state of a command; returns the command's value."""
+        state = self._state[device]
+        for flag in ("goalReached", "done"):
+            if flag in state:
+                state[flag] = True
+        if command == "moveCartesian" and isinstance(args.get("goal"), pin.SE3):
+            state["tcp"] = args["goal"]
+        elif command == "close" and "holding" in state:
+            state["holding"] = True
+        elif command == "open" and "holding" in state:
+            state["holding"] = False
+        if command == "localize":
+            return pin.SE3.Identity()
+        return None
+
+    def hold(self) -> None:
+        self.holds += 1
+
+    def close(self) -> None:
+        """Nothing to release."""
+
+
+def _initial(annotation: Any) -> Any:
+    """A neutral value of a sensor type: false, zero, identity."""
+    if annotation is bool:
+        return False
+    if annotation is pin.SE3:
+        return pin.SE3.Identity()
+    if annotation is Wrench:
+        return Wrench()
+    if annotation is Vector3:
+        return Vector3()
+    if annotation in (int, float):
+        return annotation(0)
+    if typing.get_origin(annotation) is tuple:
+        return tuple(0.0 for _ in typing.get_args(annotation) if _ is not Ellipsis)
+    return None
