@@ -67,3 +67,13 @@ def test_fails(case: Case, tmp_path: Path) -> None:
 
 
 WARNINGS = {c.code for c in all_cocos() if c.severity.value == "warning"}
+
+
+DOC = Path(__file__).resolve().parents[2] / "docs" / "cocos.md"
+
+
+def test_every_code_is_documented() -> None:
+    text = DOC.read_text(encoding="utf-8")
+    for case in CASES:
+        assert f"\n## {case.code}\n" in text, case.code
+        assert case.message in text, case.id
