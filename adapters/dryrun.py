@@ -140,6 +140,9 @@ class DryRunAdapter:
             if flag in state:
                 state[flag] = True
         if command == "moveCartesian" and isinstance(args.get("goal"), pin.SE3):
+            if isinstance(state.get("tcp"), pin.SE3) and "travel" in state:
+                moved = args["goal"].translation - state["tcp"].translation
+                state["travel"] = Vector3.of(moved)
             state["tcp"] = args["goal"]
         elif command == "close" and "holding" in state:
             state["holding"] = True

@@ -200,7 +200,8 @@ class Executor:
         if outcome == ERROR and self.fault is not None:
             self.fault.origin.append(parent.path)
             return (parent, ERROR)
-        return self._error(parent, f"unhandled outcome '{outcome}' of {state.path}", "")
+        message = f"unhandled outcome '{outcome}' of {state.path}"
+        return self._error(parent, message, state.LOCATION)
 
     def _exit(self, state: State, s: Snapshot) -> None:
         """Leave ``state`` and its active descendants, innermost first."""

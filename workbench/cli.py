@@ -162,6 +162,39 @@ def _option(text: str) -> tuple[str, str]:
     return name, value
 
 
+def _configure_run(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("run", help="generate Python for a statechart and run it")
+    parser.add_argument("model", help="the .lr file of the statechart to run")
+    parser.add_argument("--adapter", help="adapter name (see 'list adapters'); none for plain")
+    parser.add_argument(
+        "--param", action="append", default=[], metavar="NAME=VALUE", help="parameter value"
+    )
+    parser.add_argument("--trace", help="write the trace (JSON lines) to this file")
+    parser.add_argument("--events", default="", help="comma-separated events to send in order")
+    _path_option(parser)
+
+
+@command(_configure_run)
+def cmd_run(args: argparse.Namespace) -> int:
+    from workbench import run
+
+    model = existing_paths([args.model])[0]
+    context = check([model], existing_paths(args.path))
+    if context.diagnostics.has_errors:
+        print(report.text(context.diagnostics.items, all_cocos()))
+        return EXIT_FINDINGS
+    unit = next(u.unit for u in context.workspace.loaded_units() if u.path == model.resolve())
+    name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
+    try:
+        package = run.generated_package(context, [model.resolve()], run.cache_root())
+        cls = run.component_class(package, name)
+        params = run.parameters(cls, args.param)
+        events = [e.strip() for e in args.events.split(",") if e.strip()]
+        return run.show(cls, params, args.adapter, events, args.trace)
+    except (run.RunError, GenerationError) as error:
+        raise UsageError(str(error)) from None
+
+
 def _configure_list(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("list", help="list languages, context conditions or generators")
     parser.add_argument("what", choices=("languages", "cocos", "generators", "adapters"))

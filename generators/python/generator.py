@@ -9,6 +9,7 @@ installed, and the same models always give the same bytes.
 
 from __future__ import annotations
 
+import keyword
 import re
 import shutil
 import subprocess
@@ -180,7 +181,7 @@ class Builder:
             base = "rt.Final"
         elif _extends(state):
             base = self._extended_base(state, parent) or "rt.Composite"
-        elif info.region is not None:
+        elif info.region is not None and info.region.states:
             base = "rt.Composite"
         view = ClassView(name, [base], doc)
         view.constants += [f"NAME = {state.name!r}", f"LOCATION = {str(state.position)!r}"]
@@ -188,8 +189,13 @@ class Builder:
         if state.invariant is not None:
             scope = Scope(self.typing, parent, offset=1)
             invariants.append((state.invariant, scope, state.position))
-        if info.region is not None:
+        if base != "rt.State" and info.region is not None:
             self._region(info.region, view, invariants)
+        elif info.region is not None:  # a body with actions only: still a simple state
+            scope = Scope(self.typing, info.region)
+            self._actions(info.region, view, scope)
+            inner = [(i.expression, scope, i.position) for i in info.region.invariants]
+            self._invariants(view, invariants + inner)
         elif invariants:
             self._invariants(view, invariants)
         return view
@@ -393,6 +399,11 @@ class Builder:
             raise GenerationError(str(error)) from None
 
 
+def _member_name(name: str) -> str:
+    """A command, parameter or sensor name as the adapter knows it (only keywords change)."""
+    return f"{name}_" if keyword.iskeyword(name) else name
+
+
 def _component_class(component: Component) -> str:
     return identifier(component.name)
 
@@ -481,7 +492,7 @@ def _device_view(builder: Builder, symbol) -> dict:
     commands = []
     for command in device.commands:
         parameters = "".join(
-            f", {identifier(p.name)}: {python_type(types.resolve(symbol.loaded, p.type))}"
+            f", {_member_name(p.name)}: {python_type(types.resolve(symbol.loaded, p.type))}"
             + (" = ..." if p.default is not None else "")
             for p in command.parameters
         )
@@ -490,10 +501,10 @@ def _device_view(builder: Builder, symbol) -> dict:
             if command.returns
             else "None"
         )
-        commands.append({"name": identifier(command.name), "parameters": parameters,
+        commands.append({"name": _member_name(command.name), "parameters": parameters,
                          "returns": returns})  # fmt: skip
     sensors = [
-        {"name": s.name, "type": python_type(types.resolve(symbol.loaded, s.type))}
+        {"name": _member_name(s.name), "type": python_type(types.resolve(symbol.loaded, s.type))}
         for s in device.sensors
     ]
     return {
