@@ -122,6 +122,10 @@ class DryRunAdapter:
                     value = self._settle(device, command, args)
                 if settled and planned not in (None, TIMEOUT):
                     return CommandResult(planned, value)
+                if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
+                    if elapsed >= budget - 1e-9:
+                        return CommandResult(TIMEOUT)
+                    continue
                 snapshot = self.snapshot()
                 for condition in stop:
                     if condition.holds(snapshot):

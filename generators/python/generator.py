@@ -270,8 +270,7 @@ class Builder:
                 body = [self._bindings(info, scope)]
                 view.methods.append(Method(method, ", s: rt.Snapshot", "dict[str, Any]", body))
                 bindings.append(f"{info.name!r}: {method}")
-        if bindings:
-            view.tables.append("BINDINGS: ClassVar[dict[str, Any]] = {" + ", ".join(bindings) + "}")
+        view.tables.append("BINDINGS: ClassVar[dict[str, Any]] = {" + ", ".join(bindings) + "}")
         view.tables.append("STARTS = " + self._conditions(region.start_conditions, view, scope))
         view.tables.append("ENDS = " + self._conditions(region.end_conditions, view, scope))
         view.tables.append("TRANSITIONS = " + self._transitions(region, view, scope))
@@ -334,7 +333,7 @@ class Builder:
             body = [f"return {self._expr(expression, scope)}"]
             view.methods.append(Method(name, ", s: rt.Snapshot", "bool", body))
             items.append(f"rt.Invariant({name}, {str(position)!r})")
-        if items:
+        if items or not view.bases[0].startswith("rt."):  # a subclass must not inherit them
             view.tables.append(f"INVARIANTS = {_tuple(items)}")
 
     # -- elemental actions ----------------------------------------------------------------
