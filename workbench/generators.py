@@ -38,8 +38,8 @@ class Generator(Protocol):
     name: str
     description: str
 
-    def generate(self, request: GenerationRequest) -> dict[str, str]:
-        """Files to write: relative path -> content."""
+    def generate(self, request: GenerationRequest) -> dict[str, str | bytes]:
+        """Files to write: relative path -> text, or bytes for pictures."""
         ...
 
 
@@ -78,7 +78,7 @@ def template_environment(builtin: Path, override: Path | None) -> jinja2.Environ
     )
 
 
-def write_all(output: Path, files: Mapping[str, str]) -> list[Path]:
+def write_all(output: Path, files: Mapping[str, str | bytes]) -> list[Path]:
     """Write every file or none: stage in a temporary folder inside ``output``, then move."""
     if not output.is_dir():
         raise GenerationError(f"output folder '{output}' does not exist")
@@ -88,10 +88,13 @@ def write_all(output: Path, files: Mapping[str, str]) -> list[Path]:
         raise GenerationError(f"cannot write to '{output}': {error.strerror}") from None
     written: list[Path] = []
     try:
-        for relative, text in sorted(files.items()):
+        for relative, content in sorted(files.items()):
             staged = staging / relative
             staged.parent.mkdir(parents=True, exist_ok=True)
-            staged.write_text(text, encoding="utf-8", newline="\n")
+            if isinstance(content, bytes):
+                staged.write_bytes(content)
+            else:
+                staged.write_text(content, encoding="utf-8", newline="\n")
         for relative in sorted(files):
             target = output / relative
             target.parent.mkdir(parents=True, exist_ok=True)

@@ -18,7 +18,7 @@ TEMPLATES = Path(__file__).parent / "templates"
 FORMATS = ("svg", "png")
 
 
-def render(dot: str, fmt: str) -> str:
+def render(dot: str, fmt: str) -> bytes:
     """The picture of ``dot`` drawn by Graphviz."""
     program = shutil.which("dot")
     if program is None:
@@ -31,32 +31,30 @@ def render(dot: str, fmt: str) -> str:
     )
     if result.returncode != 0:
         raise GenerationError(f"dot failed: {result.stderr.decode(errors='replace').strip()}")
-    return result.stdout.decode()
+    return result.stdout
 
 
 class DotGenerator:
     name = "dot"
     description = "Graphviz DOT of statecharts (options depth=N, render=svg|png)"
 
-    def generate(self, request: GenerationRequest) -> dict[str, str]:
+    def generate(self, request: GenerationRequest) -> dict[str, str | bytes]:
         depth_text = request.options.get("depth", "0")
         if not depth_text.isdigit():
             raise GenerationError(f"option depth='{depth_text}' is not a whole number >= 0")
         fmt = request.options.get("render", "")
         if fmt and fmt not in FORMATS:
             raise GenerationError(f"option render='{fmt}': choose one of {', '.join(FORMATS)}")
-        if fmt == "png":  # the workbench writes text files only
-            raise GenerationError("render=png is not supported yet; use render=svg")
         environment = template_environment(TEMPLATES, request.templates)
         environment.globals["quote"] = quote
         template = environment.get_template("statechart.dot.jinja")
-        files: dict[str, str] = {}
+        files: dict[str, str | bytes] = {}
         for component in selected(request):
             graph = Graph.of(component, int(depth_text))
             text = template.render(graph=graph)
             files[f"{component.qualified_name}.dot"] = text
-            if fmt == "svg":
-                files[f"{component.qualified_name}.svg"] = render(text, fmt)
+            if fmt:
+                files[f"{component.qualified_name}.{fmt}"] = render(text, fmt)
         if not files:
             raise GenerationError("no statechart among the selected models")
         return files

@@ -38,7 +38,7 @@ def test_golden(pictures: dict[str, str]) -> None:
 
 @needs_dot
 def test_svg_of_screw_in_shows_states_conditions_and_outcomes() -> None:
-    svg = generate("dot", [SCREW_IN], {"render": "svg"})["screwing.skills.ScrewIn.svg"]
+    svg = generate("dot", [SCREW_IN], {"render": "svg"})["screwing.skills.ScrewIn.svg"].decode()
     for text in ("Turn", "LetGo", "Rewind", "Regrasp"):
         assert f"&gt; {text}" in svg  # after its <<import=…>> stereotype
     for text in ("start: gripped", "start: notGripped", "end: screwed", "end: lost", "end: jammed"):
@@ -46,6 +46,13 @@ def test_svg_of_screw_in_shows_states_conditions_and_outcomes() -> None:
     for outcome in ("torqueLimit", "done", "holding", "empty"):
         assert f">{outcome}" in svg
     assert "&lt;&lt;skill&gt;&gt; ScrewIn" in svg
+
+
+def test_png_of_screw_in_is_a_picture() -> None:
+    png = generate("dot", [SCREW_IN], {"render": "png"})["screwing.skills.ScrewIn.png"]
+    assert png.startswith(b"\x89PNG\r\n\x1a\n")
+    width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+    assert width > 300 and height > 300
 
 
 def test_depth_draws_imported_statecharts_as_clusters() -> None:
