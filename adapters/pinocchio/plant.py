@@ -32,11 +32,11 @@ from adapters.robot_model import (
     FINGER_JOINTS,
     FINGER_TRAVEL,
     FT_SITE,
-    GRIPPER_BAND,
     HAND_BODY,
     NV,
     READY_Q,
     TCP_SITE,
+    finger_push,
     load_robot,
     scene_path,
 )
@@ -66,7 +66,8 @@ class PinocchioPlant:
         self.data = mujoco.MjData(self.model)
         joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
         self._qadr = np.array([j.qposadr[0] for j in joints])
-        self._damping = np.array([self.model.dof_damping[j.dofadr[0]] for j in joints])
+        self._neg_damping = -np.array([self.model.dof_damping[j.dofadr[0]] for j in joints])
+        self._generalized = np.zeros(NV)
         self.robot = load_robot()
         self.robot_data = self.robot.createData()
         fingers = [self.robot.getJointId(name) for name in FINGER_JOINTS]
@@ -77,13 +78,15 @@ class PinocchioPlant:
         self.sync()
         self._ft_id = self.robot.getFrameId(FT_SITE)
         hand = self.model.body(HAND_BODY).id
-        self._load = float(self.model.body_subtreemass[hand]) * GRAVITY
+        self._load = tuple((float(self.model.body_subtreemass[hand]) * GRAVITY).tolist())
         self._load_com = self._in_body(hand, self.data.subtree_com[hand])
         self._boxes = self._static_boxes()
-        extents = np.array([np.abs(r) @ h for _, r, h in self._boxes]).reshape(-1, 3) + REACH
-        centres = np.array([c for c, _, _ in self._boxes]).reshape(-1, 3)
-        self._reach_low, self._reach_high = centres - extents, centres + extents
-        """World-axis boxes around each static box that the hand origin must enter to touch it."""
+        self._reach = [
+            (*(c - np.abs(r) @ h - REACH).tolist(), *(c + np.abs(r) @ h + REACH).tolist())
+            for c, r, h in self._boxes
+        ]
+        """Per static box, the world-axis box (x, y, z low, then high) around it that the hand
+        origin must enter to touch it."""
         self._frames, self._points = self._contact_points()
         self._contact = np.zeros(6)
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
@@ -127,25 +130,20 @@ class PinocchioPlant:
 
     def step(self, tau: np.ndarray, grip: float) -> None:
         """One DT: contacts, arm dynamics, then the first-order fingers."""
-        model, data = self.robot, self.robot_data
-        pin.framesForwardKinematics(model, data, self.q)
-        generalized = np.zeros(NV)
-        generalized[:ARM_DOF] = tau
-        generalized -= self._damping * self.v
+        pin.framesForwardKinematics(self.robot, self.robot_data, self.q)
+        generalized = np.multiply(self._neg_damping, self.v, out=self._generalized)
+        generalized[:ARM_DOF] += tau
         blocked = self._apply_contacts(generalized)
         if self._fixture is not None:
             self._apply_fixture(generalized, grip)
-        accel = pin.aba(
-            self._arm, self._arm_data, self.q[:ARM_DOF], self.v[:ARM_DOF], generalized[:ARM_DOF]
-        )
-        self.v[:ARM_DOF] += DT * accel
-        self.q[:ARM_DOF] += DT * self.v[:ARM_DOF]
-        target = self._grasp if grip > 0 else FINGER_TRAVEL
-        fade = np.clip((target - self.q[ARM_DOF:]) / GRIPPER_BAND, -1.0, 1.0)
-        speed = abs(grip) / FINGER_DAMPING * fade
-        speed[blocked & (speed < 0)] = 0.0
-        self.v[ARM_DOF:] = speed
-        self.q[ARM_DOF:] += DT * speed
+        q, v = self.q[:ARM_DOF], self.v[:ARM_DOF]
+        v += DT * pin.aba(self._arm, self._arm_data, q, v, generalized[:ARM_DOF])
+        q += DT * v
+        fingers = self.q[ARM_DOF:].tolist()
+        speeds = finger_push(grip / FINGER_DAMPING, fingers, self._grasp)
+        speeds = [0.0 if stop and s < 0 else s for stop, s in zip(blocked, speeds, strict=True)]
+        self.v[ARM_DOF:] = speeds
+        self.q[ARM_DOF:] = [f + DT * s for f, s in zip(fingers, speeds, strict=True)]
 
     def _apply_fixture(self, generalized: np.ndarray, grip: float) -> None:
         """Step the scene's fixture twin; add its wrench at the TCP to joints and wrist."""
@@ -166,16 +164,19 @@ class PinocchioPlant:
         self._contact[:3] += wrench[:3]
         self._contact[3:] += wrench[3:] + cross(tcp.translation - ft, wrench[:3])
 
-    def _apply_contacts(self, generalized: np.ndarray) -> np.ndarray:
+    def _apply_contacts(self, generalized: np.ndarray) -> list[bool]:
         """Add contact forces to ``generalized``; return which fingers touch a box."""
         data = self.robot_data
         self._contact[:] = 0.0
-        blocked = np.zeros(2, dtype=bool)
-        hand = data.oMf[self._frames[0]].translation
-        close = np.all((hand > self._reach_low) & (hand < self._reach_high), axis=1)
-        if not close.any():
+        blocked = [False, False]
+        x, y, z = data.oMf[self._frames[0]].translation.tolist()
+        near = [
+            box
+            for box, (x0, y0, z0, x1, y1, z1) in zip(self._boxes, self._reach, strict=True)
+            if x0 < x < x1 and y0 < y < y1 and z0 < z < z1
+        ]
+        if not near:
             return blocked
-        near = [box for box, flag in zip(self._boxes, close, strict=True) if flag]
         ft = data.oMf[self._ft_id].translation
         jacobians_ready = False
         for index, (frame, local) in enumerate(zip(self._frames, self._points, strict=True)):
@@ -219,12 +220,19 @@ class PinocchioPlant:
 
     def wrist(self) -> np.ndarray:
         """Quasi-static reading: what link7 must exert to hold the load against contacts."""
-        placement = self.robot_data.oMf[self._ft_id]
-        lever = placement.rotation @ self._load_com
-        raw = -self._contact
-        raw[:3] -= self._load
-        raw[3:] -= cross(lever, self._load)
-        return raw
+        lx, ly, lz = (self.robot_data.oMf[self._ft_id].rotation @ self._load_com).tolist()
+        wx, wy, wz = self._load
+        fx, fy, fz, tx, ty, tz = self._contact.tolist()
+        return np.array(
+            (
+                -fx - wx,
+                -fy - wy,
+                -fz - wz,
+                -tx - (ly * wz - lz * wy),
+                -ty - (lz * wx - lx * wz),
+                -tz - (lx * wy - ly * wx),
+            )
+        )
 
     def sync(self) -> None:
         """Copy the robot state into the MuJoCo data for ground truth and rendering."""
