@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from adapters.devices import SimulatedCell
 from adapters.mujoco.plant import MujocoPlant
+from adapters.video import VideoRecorder
 
 
 class MujocoAdapter(SimulatedCell):
@@ -18,7 +19,10 @@ class MujocoAdapter(SimulatedCell):
         video: str | None = None,
     ) -> None:
         plant = MujocoPlant(scene)
-        super().__init__(plant, scene, seed=seed, perception_noise=perception_noise)
+        recorder = None if video is None else VideoRecorder(video, plant.model)
+        super().__init__(
+            plant, scene, seed=seed, perception_noise=perception_noise, recorder=recorder
+        )
 
 
 __all__ = ["MujocoAdapter"]

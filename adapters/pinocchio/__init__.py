@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from adapters.devices import SimulatedCell
 from adapters.pinocchio.plant import PinocchioPlant
+from adapters.video import VideoRecorder
 
 
 class PinocchioAdapter(SimulatedCell):
@@ -18,7 +19,10 @@ class PinocchioAdapter(SimulatedCell):
         video: str | None = None,
     ) -> None:
         plant = PinocchioPlant(scene)
-        super().__init__(plant, scene, seed=seed, perception_noise=perception_noise)
+        recorder = None if video is None else VideoRecorder(video, plant.model)
+        super().__init__(
+            plant, scene, seed=seed, perception_noise=perception_noise, recorder=recorder
+        )
 
 
 __all__ = ["PinocchioAdapter"]
