@@ -91,7 +91,7 @@ class Executor:
             return done
 
         self._step(dispatch)
-        return handled[0]
+        return handled[0] if handled else True  # no answer: the event ended in an error
 
     def active(self) -> list[State]:
         """The active states from the top down to the innermost one."""
@@ -107,22 +107,32 @@ class Executor:
     def _step(self, begin: Any) -> None:
         self._busy = True
         try:
-            done = begin()
+            done = self._guarded(begin)
             while True:
                 while done is not None:
-                    if isinstance(done, Preemption):
-                        done = self._preempt(done)
+                    pending = done
+                    if isinstance(pending, Preemption):
+                        done = self._guarded(lambda: self._preempt(pending))
                     else:
-                        done = self._complete(*done)
-                done = self._check_invariants()
+                        done = self._guarded(lambda: self._complete(*pending))
+                done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
                     event = self.events.popleft()
                     self._write("event", name=event)
-                    done = self._dispatch(event, self.snapshot()) or None
+                    done = self._guarded(lambda: self._dispatch(event, self.snapshot()) or None)
                 if done is None:
                     return
         finally:
             self._busy = False
+
+    def _guarded(self, step: Any) -> Done:
+        """Run a step of model code; a Python error in it becomes the outcome ``error``."""
+        try:
+            return step()
+        except Exception as exc:
+            state = self.active()[-1] if self.active() else self.top
+            message = f"{type(exc).__name__} in model code: {exc}"
+            return self._error(state, message, state.LOCATION)
 
     def _enter(self, state: State, s: Snapshot) -> Done:
         """Enter ``state`` and descend until something rests or completes."""

@@ -199,3 +199,25 @@ def test_invariant_violation_is_an_error_at_its_location(build):
     assert chart.outcome == "error"
     assert chart.fault.message == "invariant violated"
     assert chart.fault.location.endswith("Counter.lr:9:3")
+
+
+DIVIDE = """package t;
+
+statechart Divide {
+  parameters {
+    Integer n = 0;
+  }
+
+  initial state Idle;
+  state Busy;
+
+  Idle -> Busy [1 / n > 0] go;
+}
+"""
+
+
+def test_python_error_in_a_guard_becomes_error_not_a_crash(build):
+    chart = build({"Divide": DIVIDE}, "Divide")().start()
+    chart.send("go")
+    assert chart.finished and chart.outcome == "error"
+    assert "ZeroDivisionError in model code" in chart.fault.message
