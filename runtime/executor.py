@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections import deque
 from dataclasses import dataclass, field
+from functools import partial
 from types import SimpleNamespace
 from typing import Any
 
@@ -110,16 +111,15 @@ class Executor:
             done = self._guarded(begin)
             while True:
                 while done is not None:
-                    pending = done
-                    if isinstance(pending, Preemption):
-                        done = self._guarded(lambda: self._preempt(pending))
+                    if isinstance(done, Preemption):
+                        done = self._guarded(partial(self._preempt, done))
                     else:
-                        done = self._guarded(lambda: self._complete(*pending))
+                        done = self._guarded(partial(self._complete, *done))
                 done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
                     event = self.events.popleft()
                     self._write("event", name=event)
-                    done = self._guarded(lambda: self._dispatch(event, self.snapshot()) or None)
+                    done = self._guarded(partial(self._dispatch_now, event))
                 if done is None:
                     return
         finally:
@@ -241,6 +241,9 @@ class Executor:
                 ):
                     return state, transition
         return None
+
+    def _dispatch_now(self, event: str) -> Done:
+        return self._dispatch(event, self.snapshot()) or None
 
     def _dispatch(self, event: str, s: Snapshot) -> Done | bool:
         found = self._find(event, s)
