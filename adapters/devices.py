@@ -19,6 +19,7 @@ import pinocchio as pin
 from adapters.control import DT, ArmState, CartesianImpedance, JointImpedance
 from adapters.robot_model import ARM_DOF, FT_SITE, HAND_BODY, READY_Q, load_robot
 from adapters.sensing import WristSensor
+from adapters.video import VideoRecorder
 from runtime.contract import (
     TIMEOUT,
     AdapterError,
@@ -259,20 +260,22 @@ _SENSORS = {
 class SimulatedCell:
     """``runtime.contract.Adapter`` for one cell (LWR, parallel gripper, camera) on a plant."""
 
+    PLANT: Callable[[str], Plant]
+    """Builds the physics of a scene; each adapter names its own."""
+
     def __init__(
         self,
-        plant: Plant,
-        scene: str,
+        scene: str = "empty",
         *,
         seed: int = 0,
         perception_noise: tuple[float, float] = (0.0, 0.0),
-        recorder: Any = None,
+        video: str | None = None,
     ) -> None:
-        self.plant = plant
+        self.plant = type(self).PLANT(scene)
         self.scene = scene
         self.noise = (float(perception_noise[0]), float(perception_noise[1]))
         self.rng = np.random.default_rng(seed)
-        self.recorder = recorder
+        self.recorder = None if video is None else VideoRecorder(video, self.plant.model)
         self.arm = ArmState(load_robot())
         self.wrist = self._make_wrist_sensor()
         self.time = 0.0
