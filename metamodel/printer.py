@@ -344,3 +344,13 @@ class Writer:
         self._lines.append(INDENT * self._depth + text)
         self._origins.append(origin)
         self._fresh = False
+
+
+def header(writer: Writer, unit: ast.StatechartUnit | ast.DomainUnit) -> None:
+    """Print the ``package`` and ``import`` lines that open every model file."""
+    if unit.package:
+        writer.item(unit.package_position, "package")
+        writer.line([f"package {unit.package};"], unit.package_position.line)
+    for node in unit.imports:
+        writer.item(node.position, "import")
+        writer.line([f"import {node.name}{'.*' if node.wildcard else ''};"], node.position.line)

@@ -11,7 +11,7 @@ from __future__ import annotations
 from languages.domain.syntax import parse_domain
 from metamodel import ast
 from metamodel.comments import Comments
-from metamodel.printer import Writer, expression, fit, parameter, stereotypes
+from metamodel.printer import Writer, expression, fit, header, parameter, stereotypes
 
 
 def format_domain_text(text: str, file: str) -> str:
@@ -22,12 +22,7 @@ def format_domain_text(text: str, file: str) -> str:
 def print_domain(unit: ast.DomainUnit, comments: Comments | None = None) -> str:
     """The canonical text of ``unit``; ``comments`` are those of the text it was parsed from."""
     writer = Writer(comments)
-    if unit.package:
-        writer.item(unit.package_position, "package")
-        writer.line([f"package {unit.package};"], unit.package_position.line)
-    for node in unit.imports:
-        writer.item(node.position, "import")
-        writer.line([f"import {node.name}{'.*' if node.wildcard else ''};"], node.position.line)
+    header(writer, unit)
     for declaration in unit.declarations:
         _declaration(writer, declaration)
     return writer.finish()

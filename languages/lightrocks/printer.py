@@ -19,6 +19,7 @@ from metamodel.printer import (
     block,
     expression,
     fit,
+    header,
     parameter,
     statement,
     stereotypes,
@@ -33,12 +34,7 @@ def format_statechart_text(text: str, file: str) -> str:
 def print_statechart(unit: ast.StatechartUnit, comments: Comments | None = None) -> str:
     """The canonical text of ``unit``; ``comments`` are those of the text it was parsed from."""
     writer = Writer(comments)
-    if unit.package:
-        writer.item(unit.package_position, "package")
-        writer.line([f"package {unit.package};"], unit.package_position.line)
-    for node in unit.imports:
-        writer.item(node.position, "import")
-        writer.line([f"import {node.name}{'.*' if node.wildcard else ''};"], node.position.line)
+    header(writer, unit)
     chart = unit.statechart
     writer.item(chart.position, "statechart")
     _body(writer, [_prefixed(chart.stereotypes, f"statechart {chart.name}")], chart)
