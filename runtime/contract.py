@@ -8,6 +8,7 @@ crossing this boundary are in SI units; frames are ``pinocchio.SE3`` in the worl
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol, runtime_checkable
@@ -31,7 +32,7 @@ class Vector3:
         return np.array([self.x, self.y, self.z])
 
     def norm(self) -> float:
-        return float(np.linalg.norm(self.array()))
+        return math.hypot(self.x, self.y, self.z)  # no array: stop predicates run every tick
 
 
 @dataclass(frozen=True)

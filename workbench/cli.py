@@ -89,14 +89,15 @@ def _configure_fmt(sub: argparse._SubParsersAction) -> None:
 def cmd_fmt(args: argparse.Namespace) -> int:
     files = [f for p in existing_paths(args.paths) for f in model_files(p, extensions())]
     diagnostics = Diagnostics()
+    original: dict[Path, str] = {}
     formatted: dict[Path, str] = {}
     for file in files:
         language = language_for(file.suffix)
         if language is None:
             raise UsageError(f"not a model file: {file}")
         try:
-            text = file.read_text(encoding="utf-8")
-            formatted[file] = language.format(text, str(file))
+            original[file] = file.read_text(encoding="utf-8")
+            formatted[file] = language.format(original[file], str(file))
         except SyntaxProblem as problem:
             diagnostics.error(
                 Position(str(file), problem.line, problem.column), "LR0001", problem.message
@@ -106,7 +107,7 @@ def cmd_fmt(args: argparse.Namespace) -> int:
     if diagnostics.has_errors:
         print(report.text(diagnostics.items, []))
         return EXIT_FINDINGS
-    changed = [f for f, text in formatted.items() if text != f.read_text(encoding="utf-8")]
+    changed = [f for f, text in formatted.items() if text != original[f]]
     if args.check:
         for file in changed:
             print(f"would reformat {file}")

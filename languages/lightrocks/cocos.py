@@ -346,7 +346,6 @@ def outcomes_handled(context: object) -> Iterator[Finding]:
 @coco("LR0210", Severity.ERROR, "no cycle of <<import>> and <<extends>>")
 def no_reference_cycle(context: object) -> Iterator[Finding]:
     a = analysis(context)
-    a.models.components  # noqa: B018 - builds every component, recording references
     graph = nx.DiGraph()
     where: dict[tuple[str, str], ast.Position] = {}
     for source, target, _, position in a.models.references:

@@ -113,14 +113,24 @@ class ModelSet:
         self.diagnostics = diagnostics
         self._components: dict[str, Component | None] = {}
         self._building: set[str] = set()
-        self.references: list[tuple[str, str, str, ast.Position]] = []
+        self._references: list[tuple[str, str, str, ast.Position]] = []
 
     @property
     def components(self) -> list[Component]:
+        self._build_all()
+        return [c for c in self._components.values() if c is not None]
+
+    @property
+    def references(self) -> list[tuple[str, str, str, ast.Position]]:
+        """Every ``<<import>>``/``<<extends>>`` edge: (source, target, kind, where)."""
+        self._build_all()
+        return self._references
+
+    def _build_all(self) -> None:
+        """Build every loaded statechart; building records its references."""
         for loaded in self.workspace.loaded_units():
             if isinstance(loaded.unit, ast.StatechartUnit):
                 self.component(_qualified(loaded.unit))
-        return [c for c in self._components.values() if c is not None]
 
     def component(self, qualified_name: str) -> Component | None:
         if qualified_name in self._components:
@@ -179,7 +189,7 @@ class ModelSet:
             )
             return None
         source = owner or _qualified(loaded.unit)
-        self.references.append((source, symbol.qualified_name, kind, reference.position))
+        self._references.append((source, symbol.qualified_name, kind, reference.position))
         return self.component(symbol.qualified_name)
 
     def _region(
@@ -193,7 +203,9 @@ class ModelSet:
         owner: str,
     ) -> Region:
         region = Region(name, position, loaded, parent=parent)
+        inherited: dict[tuple[str, str], int] = {}
         if base is not None:
+            inherited = {(t.source, t.stimulus): i for i, t in enumerate(base.transitions)}
             region.parameters.update(base.parameters)
             region.conditions.update(base.conditions)
             region.states.update(base.states)
@@ -208,7 +220,11 @@ class ModelSet:
             elif isinstance(element, ast.State):
                 region.states[element.name] = self._state(element, loaded, region, owner)
             elif isinstance(element, ast.Transition):
-                _override_transition(region.transitions, element, base)
+                index = inherited.pop((element.source, element.stimulus), None)
+                if index is None:
+                    region.transitions.append(element)
+                else:  # same source and stimulus as an inherited one: it overrides it
+                    region.transitions[index] = element
             elif isinstance(element, ast.Action):
                 own_actions.append(element)
             elif isinstance(element, ast.Invariant):
@@ -243,19 +259,6 @@ def _flatten(elements: tuple) -> list:
         else:
             flat.append(element)
     return flat
-
-
-def _override_transition(
-    transitions: list[ast.Transition], new: ast.Transition, base: Region | None
-) -> None:
-    """A derived transition replaces an inherited one with the same source and stimulus."""
-    if base is not None:
-        for index, old in enumerate(transitions):
-            inherited = old in base.transitions
-            if inherited and (old.source, old.stimulus) == (new.source, new.stimulus):
-                transitions[index] = new
-                return
-    transitions.append(new)
 
 
 def _qualified(unit: ast.StatechartUnit) -> str:
