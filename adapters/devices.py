@@ -216,9 +216,14 @@ class GripperView:
 
     @property
     def done(self) -> bool:
+        """Latched once the fingers came to rest after the last command, as a real gripper's
+        status bit: arm motion that jiggles a held part does not clear it."""
         cell = self._cell
-        settled = cell.time - cell.grip_start >= GRIPPER_SETTLE
-        return settled and float(np.max(np.abs(cell.plant.v[ARM_DOF:]))) < GRIPPER_REST_SPEED
+        if not cell.grip_settled:
+            settled = cell.time - cell.grip_start >= GRIPPER_SETTLE
+            rest = float(np.max(np.abs(cell.plant.v[ARM_DOF:]))) < GRIPPER_REST_SPEED
+            cell.grip_settled = settled and rest
+        return cell.grip_settled
 
     @property
     def holding(self) -> bool:
@@ -281,6 +286,7 @@ class SimulatedCell:
         self.time = 0.0
         self.grip = -OPEN_FORCE
         self.grip_start = 0.0
+        self.grip_settled = False
         self.camera_done = False
         self.turned = 0.0
         self._yaw = 0.0
@@ -407,6 +413,7 @@ class SimulatedCell:
     def _grip(self, force: float) -> tuple[Callable[[], bool], None]:
         self.grip = force
         self.grip_start = self.time
+        self.grip_settled = False
         view = self._live.gripper
         return (lambda: view.done), None
 

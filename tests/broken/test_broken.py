@@ -106,10 +106,10 @@ BROKEN = [
     Broken(
         "syntax-error",
         edit(
-            "screwing/actions/TurnTool.lr", replace("[robot.goalReached];", "[robot.goalReached;")
+            "screwing/actions/Approach.lr", replace("[robot.goalReached];", "[robot.goalReached;")
         ),
         "LR0001",
-        "screwing/actions/TurnTool.lr",
+        "screwing/actions/Approach.lr",
         "[robot.goalReached;",
     ),
     Broken(
@@ -143,9 +143,9 @@ BROKEN = [
     ),
     Broken(
         "misspelled-sensor",
-        edit("screwing/actions/TurnTool.lr", replace("robot.goalReached]", "robot.goalReachd]")),
+        edit("screwing/actions/Approach.lr", replace("robot.goalReached]", "robot.goalReachd]")),
         "LR0106",
-        "screwing/actions/TurnTool.lr",
+        "screwing/actions/Approach.lr",
         "goalReachd",
         hint="did you mean 'goalReached'?",
     ),

@@ -49,7 +49,9 @@ def test_mapping_of_children_outcomes_and_timeouts(units: dict[str, str]) -> Non
     assert "DriveIn_fb(execute := TRUE, depth := depth, tight := tight);" in text
     assert "DriveIn_fb(execute := FALSE);" in text
     # an elemental action: a device call; its end condition compiled over device outputs
-    assert "robot(moveCartesian := TRUE, moveCartesian_goal := FRAME_MUL(robot.tcp" in text
+    assert (
+        "robot(moveCartesian := TRUE, moveCartesian_goal := FRAME_MUL(FRAME_MUL(robot.tcp" in text
+    )
     assert "robot(moveCartesian := FALSE);" in text
     assert "ABS(robot.wrench.torque.z) > Turn_2_maxTorque" in text
     assert "Turn_2.T >= T#10s" in text  # <<timeout="10 s">> of TurnTool
