@@ -172,26 +172,53 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--trace", help="write the trace (JSON lines) to this file")
     parser.add_argument("--events", default="", help="comma-separated events to send in order")
+    parser.add_argument("--seed", type=int, default=0, help="the adapter's random seed")
+    parser.add_argument(
+        "--perception-noise",
+        metavar="LENGTH,ANGLE",
+        help="Gaussian sigmas of the camera's position and rotation, e.g. 2mm,2deg",
+    )
+    parser.add_argument("--video", metavar="FILE", help="record a video (.mp4) or PNG frames")
+    parser.add_argument(
+        "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
+    )
     _path_option(parser)
 
 
 @command(_configure_run)
 def cmd_run(args: argparse.Namespace) -> int:
+    from functools import partial
+
     from workbench import run
 
-    model = existing_paths([args.model])[0]
-    context = check([model], existing_paths(args.path))
-    if context.diagnostics.has_errors:
-        print(report.text(context.diagnostics.items, all_cocos()))
-        return EXIT_FINDINGS
-    unit = next(u.unit for u in context.workspace.loaded_units() if u.path == model.resolve())
-    name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
+    model = existing_paths([args.model])[0].resolve()
+    search_path = existing_paths(args.path)
+    trace = Path(args.trace) if args.trace else None
+    if trace is not None and not trace.parent.is_dir():
+        raise UsageError(f"--trace: no such folder: {trace.parent}")
+    events = [e.strip() for e in args.events.split(",") if e.strip()]
     try:
-        package = run.generated_package(context, [model.resolve()], run.cache_root())
-        cls = run.component_class(package, name)
-        params = run.parameters(cls, args.param)
-        events = [e.strip() for e in args.events.split(",") if e.strip()]
-        return run.show(cls, params, args.adapter, events, args.trace)
+        noise = run.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
+        cls = run.load_component(model, search_path)
+        run.success_outcome(cls, args.success)
+        run.parameters(cls, args.param)
+        run.adapter_options(args.adapter, args.seed, noise, args.video)
+        single = partial(
+            run.run_component,
+            cls,
+            args.param,
+            args.adapter,
+            args.seed,
+            noise,
+            trace,
+            args.video,
+            events=events,
+            success=args.success,
+        )
+        return run.show(cls.NAME, single)
+    except run.ModelError as error:
+        print(error)
+        return EXIT_FINDINGS
     except (run.RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
 

@@ -10,6 +10,8 @@ from __future__ import annotations
 import hashlib
 import importlib
 import importlib.util
+import inspect
+import math
 import os
 import sys
 from collections.abc import Callable, Sequence
@@ -25,8 +27,13 @@ from generators.python.names import identifier
 from languages.lightrocks.syntax import parse_statechart
 from metamodel import ast
 from metamodel.grammar import SyntaxProblem
-from workbench.check import CheckContext
+from metamodel.units import ANGLE, LENGTH, Dimension, UnitError, lookup
+from workbench import report
+from workbench.check import CheckContext, all_cocos, check
 from workbench.generators import GenerationRequest, write_all
+
+Noise = tuple[float, float]
+"""Perception noise: position sigma [m], rotation sigma [rad]."""
 
 
 class RunError(Exception):
@@ -70,26 +77,61 @@ def component_class(package: ModuleType, qualified_name: str) -> type:
     return getattr(module, identifier(qualified_name.rpartition(".")[2]))
 
 
-def parse_value(text: str) -> Any:
-    """A ``--param`` value as a LightRocks literal: ``12mm``, ``0.32 Nm``, ``true``, ``"a"``."""
+def _literal(text: str) -> Any:
+    """The expression of ``text`` parsed as a parameter default, so units and signs work."""
     wrapper = f"statechart P {{ parameters {{ Real p = {text}; }} }}"
     try:
         unit = parse_statechart(wrapper, "<param>")
     except SyntaxProblem:
         raise RunError(f"'{text}' is not a literal value") from None
     (block,) = unit.statechart.elements
-    value = block.parameters[0].default if len(block.parameters) == 1 else None
+    return block.parameters[0].default if len(block.parameters) == 1 else None
+
+
+def _dimension(quantity: ast.Quantity) -> Dimension:
+    """The parser keeps an unknown unit's number as it is, so a typo must fail here."""
+    try:
+        return lookup(quantity.unit).dimension
+    except UnitError as error:
+        hint = f" (did you mean {' or '.join(error.suggestions)}?)" if error.suggestions else ""
+        raise RunError(f"'{quantity.text}': {error}{hint}") from None
+
+
+def parse_value(text: str) -> Any:
+    """A ``--param`` value as a LightRocks literal: ``12mm``, ``0.32 Nm``, ``true``, ``"a"``."""
+    value = _literal(text)
     negative = isinstance(value, ast.Unary) and value.operator == "-"
     literal = value.operand if negative else value
     if isinstance(literal, ast.Quantity):
+        _dimension(literal)
         number = -literal.value if negative else literal.value
         plain = not literal.unit and not any(c in literal.text for c in ".eE")
         return int(number) if plain and float(number).is_integer() else float(number)
     if isinstance(literal, ast.BooleanLiteral | ast.StringLiteral) and not negative:
         return literal.value
     if isinstance(literal, ast.VectorLiteral) and not negative:
+        for element in literal.elements:
+            if isinstance(element, ast.Quantity):
+                _dimension(element)
         return tuple(e.value for e in literal.elements if isinstance(e, ast.Quantity))
     raise RunError(f"'{text}' is not a literal value")
+
+
+def parse_noise(text: str) -> Noise:
+    """``--perception-noise 2mm,2deg``: the camera's position and rotation sigmas in SI."""
+    usage = f"--perception-noise '{text}' is not LENGTH,ANGLE such as 2mm,2deg"
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise RunError(usage)
+    sigmas = []
+    for part, dimension in zip(parts, (LENGTH, ANGLE), strict=True):
+        literal = _literal(part.strip())
+        if not isinstance(literal, ast.Quantity) or _dimension(literal) != dimension:
+            raise RunError(usage)
+        if literal.value < 0:
+            raise RunError(f"--perception-noise '{text}': a sigma cannot be negative")
+        sigmas.append(literal.value)
+    return sigmas[0], sigmas[1]
 
 
 def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
@@ -106,11 +148,53 @@ def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
     return bound
 
 
-def adapter_for(name: str, scene: str | None) -> Any:
+def adapter_factory(name: str) -> Callable[..., Any]:
     found = {e.name: e for e in entry_points(group="lightrocks.adapters")}
     if name not in found:
         raise RunError(f"unknown adapter '{name}'; known: {', '.join(sorted(found))}")
-    return found[name].load()(scene=scene)
+    return found[name].load()
+
+
+def adapter_options(
+    name: str | None, seed: int = 0, noise: Noise = (0.0, 0.0), video: str | None = None
+) -> dict[str, Any]:
+    """Keyword arguments for the adapter, read off its signature so that nothing it cannot
+    honour (noise, a video) is silently dropped; the seed only matters to adapters that
+    draw random numbers."""
+    if name is None:
+        if any(noise) or video is not None:
+            raise RunError("perception noise and video need an adapter (--adapter)")
+        return {}
+    accepted = inspect.signature(adapter_factory(name)).parameters
+    options: dict[str, Any] = {"seed": seed} if "seed" in accepted else {}
+    if any(noise):
+        if "perception_noise" not in accepted:
+            raise RunError(f"adapter '{name}' has no perception noise")
+        options["perception_noise"] = noise
+    if video is not None:
+        if "video" not in accepted:
+            raise RunError(f"adapter '{name}' cannot record a video")
+        options["video"] = video
+    return options
+
+
+def adapter_for(name: str, scene: str | None, **options: Any) -> Any:
+    return adapter_factory(name)(scene=scene, **options)
+
+
+def scene_of(cls: type) -> str | None:
+    return cls.CELL.SCENE if cls.CELL is not None else None
+
+
+def success_outcome(cls: type, chosen: str | None = None) -> str | None:
+    """The outcome that counts as success: ``chosen``, else the first declared end condition
+    (final states come after end conditions in ``OUTCOMES``)."""
+    if chosen is None:
+        return cls.OUTCOMES[0] if cls.OUTCOMES else None
+    if chosen not in cls.OUTCOMES:
+        known = ", ".join(cls.OUTCOMES) or "none"
+        raise RunError(f"{cls.NAME} has no outcome '{chosen}'; outcomes: {known}")
+    return chosen
 
 
 @dataclass
@@ -142,22 +226,28 @@ def summarize(chart: Any) -> Summary:
     )
 
 
-def run_chart(
+def drive(
     cls: type,
     params: dict[str, Any],
-    adapter_name: str | None,
+    adapter: Any,
     events: Sequence[str],
     trace: Path | None,
     progress: Callable[[dict[str, Any]], None] | None = None,
 ) -> Any:
-    """Create, bind and run the chart; send the events once it rests."""
-    chart = cls(**params)
-    adapter = None
-    if adapter_name is not None:
-        cell = cls.CELL
-        adapter = adapter_for(adapter_name, cell.SCENE if cell is not None else None)
-    from runtime import Trace
+    """Create, bind and run the chart; send the events once it rests.
 
+    The binding is checked before the trace file is opened, so a run that cannot start
+    leaves no file behind.
+    """
+    from runtime import BindingError, Trace
+    from runtime.binding import bind
+
+    chart = cls(**params)
+    try:
+        if adapter is not None:
+            bind(adapter, cls.CELL)
+    except BindingError as error:
+        raise RunError(str(error)) from None
     recorder = Trace(trace)
     if progress is not None:
         recorder.listeners.append(progress)
@@ -169,43 +259,182 @@ def run_chart(
             chart.send(event)
     finally:
         recorder.close()
-        if adapter is not None:
-            adapter.close()
     return chart
 
 
-def show(
-    cls: type, params: dict[str, Any], adapter: str | None, events: list[str], trace: str | None
-) -> int:
-    """Run with a live status line (state path, simulated time) and print the summary."""
+def run_chart(
+    cls: type,
+    params: dict[str, Any],
+    adapter_name: str | None,
+    events: Sequence[str],
+    trace: Path | None,
+    progress: Callable[[dict[str, Any]], None] | None = None,
+) -> Any:
+    """Run the chart on a new adapter of that name (none for a plain statechart)."""
+    adapter = None if adapter_name is None else adapter_for(adapter_name, scene_of(cls))
+    try:
+        return drive(cls, params, adapter, events, trace, progress)
+    finally:
+        if adapter is not None:
+            adapter.close()
+
+
+class ModelError(Exception):
+    """The model has check errors; the argument is the report."""
+
+
+def load_component(model: Path, search_path: Sequence[Path]) -> type:
+    """Check the model, generate it (once per content) and import the class of its chart."""
+    context = check([model], list(search_path))
+    if context.diagnostics.has_errors:
+        raise ModelError(report.text(context.diagnostics.items, all_cocos()))
+    unit = next(u.unit for u in context.workspace.loaded_units() if u.path == model.resolve())
+    name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
+    package = generated_package(context, [model.resolve()], cache_root())
+    return component_class(package, name)
+
+
+@dataclass
+class RunResult:
+    """What one run gives a report or a benchmark; plain data, so it crosses processes."""
+
+    seed: int
+    outcome: str | None
+    success: bool
+    time: float
+    skills: list[tuple[str, float]]
+    measurements: dict[str, float | bool]
+    fault: str
+    active: tuple[str, ...]
+    """The active configuration when the run did not finish."""
+
+
+def run_component(
+    cls: type,
+    params: Sequence[str],
+    adapter: str | None,
+    seed: int = 0,
+    noise: Noise = (0.0, 0.0),
+    trace: Path | None = None,
+    video: str | None = None,
+    *,
+    events: Sequence[str] = (),
+    success: str | None = None,
+    progress: Callable[[dict[str, Any]], None] | None = None,
+) -> RunResult:
+    """One run of a loaded chart; the measurements are read before the adapter is closed,
+    because closing ends its simulation."""
+    wanted = success_outcome(cls, success)
+    values = parameters(cls, params)
+    options = adapter_options(adapter, seed, noise, video)
+    device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
+    try:
+        chart = drive(cls, values, device, events, trace, progress)
+        measure = getattr(device, "measurements", None)
+        measured = dict(measure()) if measure is not None else {}
+    finally:
+        if device is not None:
+            device.close()
+    summary = summarize(chart)
+    if wanted is None:
+        succeeded = chart.finished and summary.outcome != "error"
+    else:
+        succeeded = summary.outcome == wanted
+    return RunResult(
+        seed,
+        summary.outcome,
+        succeeded,
+        summary.time,
+        summary.skills,
+        measured,
+        summary.fault,
+        () if chart.finished else chart.active_configuration,
+    )
+
+
+def run_once(
+    model: Path,
+    search_path: Sequence[Path],
+    params: Sequence[str],
+    adapter: str | None,
+    seed: int = 0,
+    noise: Noise = (0.0, 0.0),
+    trace: Path | None = None,
+    video: str | None = None,
+    *,
+    events: Sequence[str] = (),
+    success: str | None = None,
+) -> RunResult:
+    """One run from picklable inputs only, so that a worker process can do it on its own:
+    the generated code is imported again from the cache, never pickled."""
+    cls = load_component(model, search_path)
+    return run_component(
+        cls, params, adapter, seed, noise, trace, video, events=events, success=success
+    )
+
+
+_SCALES = {
+    "_depth": (1e3, "mm", 1),
+    "_height": (1e3, "mm", 1),
+    "_angle": (180 / math.pi, "deg", 1),
+    "_torque": (1.0, "Nm", 3),
+}
+"""Measurement key suffix -> factor from SI, unit, decimals."""
+
+
+def measurement_label(key: str) -> str:
+    return key.replace("_", " ")
+
+
+def format_measurement(key: str, value: float | bool | str) -> str:
+    """Readable value: metres as millimetres, radians as degrees, booleans as yes/no."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if not isinstance(value, int | float):
+        return str(value)
+    for suffix, (factor, unit, decimals) in _SCALES.items():
+        if key.endswith(suffix):
+            return f"{value * factor:.{decimals}f} {unit}"
+    return f"{value:g}"
+
+
+def show(name: str, run: Callable[..., RunResult]) -> int:
+    """Call ``run(progress=…)`` with a live status line on stderr (simulated time, active
+    state path) and print the summary on stdout; 0 when it ended with the success outcome."""
     from rich.console import Console
     from rich.table import Table
 
-    from runtime import BindingError
-
-    console = Console(stderr=True, highlight=False)
-    with console.status("starting") as status:
+    with Console(stderr=True, highlight=False, markup=False).status("starting") as status:
+        path = ""
 
         def progress(record: dict[str, Any]) -> None:
+            nonlocal path
             if record["kind"] == "enter":
-                status.update(f"{record['time']:8.3f} s  {record['state']}")
+                path = record["state"]
+            elif record["kind"] == "exit":
+                path = record["state"].rpartition("/")[0]
+            status.update(f"{record['time']:8.3f} s  {path}")
 
-        try:
-            chart = run_chart(
-                cls, params, adapter, events, Path(trace) if trace else None, progress
-            )
-        except BindingError as error:
-            raise RunError(str(error)) from None
-    summary = summarize(chart)
-    table = Table(title=f"{cls.NAME}: {summary.outcome or 'not finished'}", title_justify="left")
-    table.add_column("skill")
-    table.add_column("time [s]", justify="right")
-    for path, seconds in summary.skills:
-        table.add_row(path, f"{seconds:.3f}")
-    Console(highlight=False).print(table)
-    print(f"outcome: {summary.outcome or 'not finished'} after {summary.time:.3f} s")
-    if not chart.finished:
-        print("active: " + " / ".join(chart.active_configuration))
-    if summary.fault:
-        print(f"error: {summary.fault}")
-    return 0 if chart.finished and summary.outcome != "error" else 1
+        result = run(progress=progress)
+    console = Console(highlight=False, markup=False)
+    outcome = result.outcome or "not finished"
+    if result.skills:
+        table = Table(title=f"{name}: {outcome}", title_justify="left")
+        table.add_column("skill")
+        table.add_column("time [s]", justify="right")
+        for skill, seconds in result.skills:
+            table.add_row(skill, f"{seconds:.3f}")
+        console.print(table)
+    if result.measurements:
+        table = Table()
+        table.add_column("measurement")
+        table.add_column("value", justify="right")
+        for key, value in result.measurements.items():
+            table.add_row(measurement_label(key), format_measurement(key, value))
+        console.print(table)
+    print(f"outcome: {outcome} after {result.time:.3f} s")
+    if result.active:
+        print("active: " + " / ".join(result.active))
+    if result.fault:
+        print(f"error: {result.fault}")
+    return 0 if result.success else 1
