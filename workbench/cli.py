@@ -174,6 +174,12 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--events", default="", help="comma-separated events to send in order")
     parser.add_argument("--seed", type=int, default=0, help="the adapter's random seed")
     parser.add_argument(
+        "--seeds", type=int, metavar="N", help="repeat with seeds SEED..SEED+N-1 and report"
+    )
+    parser.add_argument(
+        "--workers", type=int, metavar="K", help="processes for --seeds (default: one per core)"
+    )
+    parser.add_argument(
         "--perception-noise",
         metavar="LENGTH,ANGLE",
         help="Gaussian sigmas of the camera's position and rotation, e.g. 2mm,2deg",
@@ -197,12 +203,34 @@ def cmd_run(args: argparse.Namespace) -> int:
     if trace is not None and not trace.parent.is_dir():
         raise UsageError(f"--trace: no such folder: {trace.parent}")
     events = [e.strip() for e in args.events.split(",") if e.strip()]
+    if args.seeds is not None and args.seeds < 1:
+        raise UsageError("--seeds must be at least 1")
+    if args.workers is not None and (args.seeds is None or args.workers < 1):
+        raise UsageError("--workers needs --seeds and must be at least 1")
+    if args.seeds is not None and args.video:
+        raise UsageError("--video records a single run: leave out --seeds")
     try:
         noise = run.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
         cls = run.load_component(model, search_path)
-        run.success_outcome(cls, args.success)
+        wanted = run.success_outcome(cls, args.success)
         run.parameters(cls, args.param)
         run.adapter_options(args.adapter, args.seed, noise, args.video)
+        if args.seeds is not None:
+            seeds = range(args.seed, args.seed + args.seeds)
+            many = partial(
+                run.run_seeds,
+                model,
+                search_path,
+                args.param,
+                args.adapter,
+                seeds,
+                noise,
+                trace,
+                events=events,
+                success=args.success,
+                workers=args.workers,
+            )
+            return run.show_seeds(cls.NAME, wanted, len(seeds), many)
         single = partial(
             run.run_component,
             cls,

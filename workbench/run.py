@@ -3,6 +3,8 @@
 The cache folder is named by a hash of every loaded model's text, so an unchanged model is
 generated once. Generated modules are imported with importlib from that folder; model text
 itself is never executed, and ``--param`` values go through the expression parser.
+Repeated runs (``--seeds``) happen in worker processes that get only picklable inputs and
+import the generated code again from the cache.
 """
 
 from __future__ import annotations
@@ -12,9 +14,13 @@ import importlib
 import importlib.util
 import inspect
 import math
+import multiprocessing
 import os
+import signal
+import statistics
 import sys
 from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from importlib.metadata import entry_points
 from pathlib import Path
@@ -373,6 +379,79 @@ def run_once(
     )
 
 
+def seed_trace(trace: Path | None, seed: int) -> Path | None:
+    """``run.jsonl`` -> ``run.seed3.jsonl``: one trace per seed."""
+    return None if trace is None else trace.with_name(f"{trace.stem}.seed{seed}{trace.suffix}")
+
+
+def _ignore_interrupt() -> None:
+    """Ctrl-C is the parent's to handle: it cancels the runs that have not started."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def run_seeds(
+    model: Path,
+    search_path: Sequence[Path],
+    params: Sequence[str],
+    adapter: str | None,
+    seeds: Sequence[int],
+    noise: Noise = (0.0, 0.0),
+    trace: Path | None = None,
+    *,
+    events: Sequence[str] = (),
+    success: str | None = None,
+    workers: int | None = None,
+    done: Callable[[RunResult], None] | None = None,
+) -> list[RunResult]:
+    """``run_once`` per seed in worker processes (default: one per core); results in seed
+    order, ``done`` is called in this process as each run ends.
+
+    Workers are spawned, not forked: the parent may run a progress thread and have MuJoCo
+    loaded, neither of which survives a fork reliably.
+    """
+    if not seeds:
+        return []
+    count = min(workers or os.cpu_count() or 1, len(seeds))
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(count, mp_context=context, initializer=_ignore_interrupt) as pool:
+        futures = [
+            pool.submit(
+                run_once,
+                model,
+                list(search_path),
+                list(params),
+                adapter,
+                seed,
+                noise,
+                seed_trace(trace, seed),
+                events=list(events),
+                success=success,
+            )
+            for seed in seeds
+        ]
+        try:
+            for future in as_completed(futures):
+                result = future.result()
+                if done is not None:
+                    done(result)
+        except BaseException:
+            pool.shutdown(cancel_futures=True)
+            raise
+    return [future.result() for future in futures]
+
+
+def wilson(successes: int, runs: int, z: float = 1.959963984540054) -> tuple[float, float]:
+    """The 95 % Wilson score interval of a success rate; unlike p ± z·σ it stays inside
+    [0, 1] and is not empty for 0 or N successes out of few runs."""
+    if runs == 0:
+        return 0.0, 1.0
+    rate = successes / runs
+    scale = 1 + z * z / runs
+    centre = (rate + z * z / (2 * runs)) / scale
+    half = z * math.sqrt(rate * (1 - rate) / runs + z * z / (4 * runs * runs)) / scale
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
 _SCALES = {
     "_depth": (1e3, "mm", 1),
     "_height": (1e3, "mm", 1),
@@ -384,6 +463,11 @@ _SCALES = {
 
 def measurement_label(key: str) -> str:
     return key.replace("_", " ")
+
+
+def key_measurements(measured: dict[str, float | bool]) -> dict[str, float | bool]:
+    """What a per-seed row shows: the yes/no results and the depths."""
+    return {k: v for k, v in measured.items() if isinstance(v, bool) or k.endswith("_depth")}
 
 
 def format_measurement(key: str, value: float | bool | str) -> str:
@@ -438,3 +522,63 @@ def show(name: str, run: Callable[..., RunResult]) -> int:
     if result.fault:
         print(f"error: {result.fault}")
     return 0 if result.success else 1
+
+
+def show_seeds(
+    name: str, wanted: str | None, runs: int, run: Callable[..., list[RunResult]]
+) -> int:
+    """Call ``run(done=…)`` with a progress bar on stderr; print a row per seed, the success
+    rate with its 95 % Wilson interval and the spread of the simulated time on stdout.
+    0 when every run ended with the success outcome."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.table import Table
+
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("{task.fields[succeeded]} succeeded"),
+        TimeElapsedColumn(),
+    )
+    with Progress(*columns, console=Console(stderr=True, highlight=False)) as bar:
+        task = bar.add_task(name, total=runs, succeeded=0)
+        succeeded = 0
+
+        def done(result: RunResult) -> None:
+            nonlocal succeeded
+            succeeded += result.success
+            bar.update(task, advance=1, succeeded=succeeded)
+
+        results = run(done=done)
+    keys = list(dict.fromkeys(k for r in results for k in key_measurements(r.measurements)))
+    table = Table(title=f"{name}: {len(results)} runs", title_justify="left")
+    table.add_column("seed", justify="right")
+    table.add_column("outcome")
+    table.add_column("time [s]", justify="right")
+    for key in keys:
+        table.add_column(measurement_label(key), justify="right")
+    for result in results:
+        measured = result.measurements
+        cells = [format_measurement(k, measured[k]) if k in measured else "" for k in keys]
+        table.add_row(
+            str(result.seed), result.outcome or "not finished", f"{result.time:.3f}", *cells
+        )
+    Console(highlight=False, markup=False).print(table)
+    for result in results:
+        if result.fault:
+            print(f"seed {result.seed}: error: {result.fault}")
+    count = sum(r.success for r in results)
+    low, high = wilson(count, len(results))
+    label = wanted or "finished without error"
+    print(
+        f"success ({label}): {count}/{len(results)} = {count / len(results):.0%}, "
+        f"95% Wilson interval {low:.0%}–{high:.0%}"
+    )
+    times = [r.time for r in results]
+    spread = statistics.stdev(times) if len(times) > 1 else 0.0
+    print(
+        f"simulated time: {statistics.fmean(times):.3f} ± {spread:.3f} s, "
+        f"min {min(times):.3f} s, max {max(times):.3f} s"
+    )
+    return 0 if count == len(results) else 1

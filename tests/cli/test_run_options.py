@@ -12,7 +12,14 @@ from pathlib import Path
 import pytest
 
 from workbench.cli import main
-from workbench.run import RunError, format_measurement, parse_noise, parse_value
+from workbench.run import (
+    RunError,
+    format_measurement,
+    parse_noise,
+    parse_value,
+    seed_trace,
+    wilson,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 SCREW_TASK = str(ROOT / "examples" / "screwing" / "tasks" / "ScrewTask.lr")
@@ -113,6 +120,9 @@ def test_measurements_are_readable() -> None:
         (["--adapter", "dryrun", "--perception-noise", "2mm,2deg"], "has no perception noise"),
         (["--adapter", "dryrun", "--video", "run.mp4"], "cannot record a video"),
         (["--video", "run.mp4"], "need an adapter"),
+        (["--adapter", "mujoco", "--video", "run.mp4", "--seeds", "2"], "single run"),
+        (["--adapter", "dryrun", "--workers", "2"], "--workers needs --seeds"),
+        (["--adapter", "dryrun", "--seeds", "0"], "--seeds must be at least 1"),
         (
             ["--adapter", "dryrun", "--success", "over"],
             "Job has no outcome 'over'; outcomes: done, failed",
@@ -159,6 +169,38 @@ def test_plain_chart_succeeds_with_its_final_state(capsys: pytest.CaptureFixture
     status, out, _ = run(capsys, TURNSTILE, "--events", "coin")
     assert status == 1
     assert "active: Turnstile / Operating / Unlocked" in out
+
+
+def test_wilson_interval() -> None:
+    assert wilson(0, 3) == pytest.approx((0.0, 0.5615), abs=1e-4)
+    assert wilson(5, 10) == pytest.approx((0.2366, 0.7634), abs=1e-4)
+    assert wilson(10, 10) == pytest.approx((0.7225, 1.0), abs=1e-4)
+
+
+def test_seeds_run_in_workers_with_a_trace_each(
+    job: list[str], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    trace = tmp_path / "run.jsonl"
+    options = ["--adapter", "dryrun", "--seeds", "3", "--workers", "2", "--trace", str(trace)]
+    status, out, err = run(capsys, *job, *options)
+    assert status == 0, out + err
+    rows = re.findall(r"^\W*(\d+)\W+done\W+0\.100\W*$", out, re.MULTILINE)
+    assert rows == ["0", "1", "2"]
+    assert "success (done): 3/3 = 100%, 95% Wilson interval 44%–100%" in out
+    assert "simulated time: 0.100 ± 0.000 s, min 0.100 s, max 0.100 s" in out
+    assert "3/3" in err  # the progress bar
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        f"run.seed{seed}.jsonl" for seed in range(3)
+    ]
+    assert seed_trace(trace, 7) == tmp_path / "run.seed7.jsonl"
+
+
+def test_seeds_count_the_failures(job: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    options = ["--adapter", "dryrun", "--seeds", "2", "--seed", "5", "--success", "failed"]
+    status, out, _ = run(capsys, *job, *options)
+    assert status == 1
+    assert re.findall(r"^\W*(\d+)\W+done", out, re.MULTILINE) == ["5", "6"]
+    assert "success (failed): 0/2 = 0%" in out
 
 
 @pytest.mark.slow
