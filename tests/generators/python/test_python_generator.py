@@ -10,7 +10,7 @@ import pytest
 
 from adapters.dryrun import DryRunAdapter
 from generators.python import GENERATOR
-from runtime import Vector3
+from runtime import Vector3, Wrench
 from workbench.check import check
 from workbench.cli import main
 from workbench.generators import GenerationRequest
@@ -75,7 +75,10 @@ def test_screw_task_runs_to_success_on_the_dry_run(package):
 
 
 def test_assemble_rail_runs_to_success_on_the_dry_run(package):
-    chart = component_class(package, "din_rail.tasks.AssembleRail")().start(DryRunAdapter())
+    # the rail pushes back a little, so that the downward search (Touch) finds it
+    pushing_back = Wrench(Vector3(0.0, 0.0, 6.0), Vector3(0.0, 0.0, 0.0))
+    adapter = DryRunAdapter(sensors={"robot.wrench": pushing_back})
+    chart = component_class(package, "din_rail.tasks.AssembleRail")().start(adapter)
     assert chart.outcome == "assembled"
     tasks = [s for s in _states(chart) if s.count("/") == 1]
     assert tasks == [f"AssembleRail/PlugTerminal{i}" for i in (1, 2, 3)]
