@@ -203,6 +203,10 @@ class RobotView:
     def turned(self) -> float:
         return self._cell.turned
 
+    @property
+    def peakForce(self) -> float:
+        return self._cell.peak_force
+
 
 class GripperView:
     """Sensor values of the gripper at the current tick."""
@@ -256,7 +260,7 @@ class LiveSnapshot:
 
 
 _SENSORS = {
-    "robot": ("tcp", "wrench", "q", "goalReached", "travel", "turned"),
+    "robot": ("tcp", "wrench", "q", "goalReached", "travel", "turned", "peakForce"),
     "gripper": ("holding", "width", "done"),
     "camera": ("done",),
 }
@@ -289,6 +293,7 @@ class SimulatedCell:
         self.grip_settled = False
         self.camera_done = False
         self.turned = 0.0
+        self.peak_force = 0.0
         self._yaw = 0.0
         self.travel_origin = np.zeros(3)
         self._r0 = np.eye(3)
@@ -433,6 +438,7 @@ class SimulatedCell:
     def _start_command(self) -> None:
         self.travel_origin = self.arm.tcp.translation.copy()
         self.turned = 0.0
+        self.peak_force = 0.0
         self._yaw = 0.0
         self._r0 = self.arm.tcp.rotation.copy()
         self.camera_done = False
@@ -453,6 +459,8 @@ class SimulatedCell:
         arm.update(self.plant.q, self.plant.v)
         self.wrist.update(self.plant.wrist(), arm.ft, arm.position)
         self.wrench_value = None
+        force = self.wrist.wrench[:3]
+        self.peak_force = max(self.peak_force, math.sqrt(force @ force))
         cos, sin, _ = (arm.rotation[:, 0] @ self._r0).tolist()  # first column of R₀ᵀ R
         yaw = math.atan2(sin, cos)
         self.turned += (yaw - self._yaw + math.pi) % (2 * math.pi) - math.pi
