@@ -13,7 +13,7 @@ $(STAMP): pyproject.toml
 
 demo: $(STAMP)
 	$(BIN)/lightrocks check examples
-	$(BIN)/lightrocks fmt --check examples
+	$(BIN)/lightrocks run examples/screwing/tasks/ScrewTask.lr --adapter mujoco
 
 test: $(STAMP)
 	$(BIN)/python -m pytest
@@ -23,6 +23,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_check.py
 	$(BIN)/python benchmarks/bench_runtime.py
 	$(BIN)/python benchmarks/bench_adapters.py
+	$(BIN)/python benchmarks/bench_case_studies.py
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

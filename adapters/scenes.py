@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import os
 import weakref
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import mujoco
@@ -120,6 +121,17 @@ def measurements(
     if key == "din_rail":
         return _rail_measurements(model, data)
     return {}
+
+
+def goal_met(scene_name: str, values: Mapping[str, float | bool]) -> bool:
+    """Whether :func:`measurements` show the scene's case study done: the screw seated at its
+    target depth, or all three terminals latched. False for scenes without a goal."""
+    key = scene_key(scene_name)
+    if key == "screwing":
+        return bool(values.get("screw_bottomed"))
+    if key == "din_rail":
+        return values.get("terminals_latched") == len(TERMINALS)
+    return False
 
 
 def _screwing_measurements(model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, float | bool]:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from adapters.scenes import SCREW_TARGET_DEPTH
+from adapters.scenes import SCREW_TARGET_DEPTH, goal_met
 from workbench.run import RunResult, run_once, run_seeds
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -32,15 +32,11 @@ def private_cache(tmp_path_factory, monkeypatch) -> None:
 
 
 def screwed_home(result: RunResult) -> bool:
-    return (
-        result.outcome == "screwed"
-        and bool(result.measurements["screw_bottomed"])
-        and result.measurements["screw_depth"] > SCREW_TARGET_DEPTH - 0.5e-3
-    )
+    return result.outcome == "screwed" and goal_met("screwing", result.measurements)
 
 
 def all_latched(result: RunResult) -> bool:
-    return result.outcome == "assembled" and result.measurements["terminals_latched"] == 3
+    return result.outcome == "assembled" and goal_met("din_rail", result.measurements)
 
 
 def tasks_in_order(result: RunResult) -> list[str]:
@@ -53,6 +49,7 @@ def tasks_in_order(result: RunResult) -> list[str]:
 def test_screw_task_drives_the_screw_home(adapter: str) -> None:
     result = run_once(SCREW_TASK, [], [], adapter)
     assert screwed_home(result), result
+    assert result.measurements["screw_depth"] == pytest.approx(SCREW_TARGET_DEPTH, abs=0.5e-3)
     drives = [path for path, _ in result.skills if path == "ScrewTask/DriveIn"]
     assert len(drives) == 1
 
