@@ -10,7 +10,7 @@ import pytest
 
 from adapters.dryrun import DryRunAdapter
 from generators.python import GENERATOR
-from runtime import Vector3, Wrench
+from runtime import Vector3
 from workbench.check import check
 from workbench.cli import main
 from workbench.generators import GenerationRequest
@@ -75,9 +75,14 @@ def test_screw_task_runs_to_success_on_the_dry_run(package):
 
 
 def test_assemble_rail_runs_to_success_on_the_dry_run(package):
-    # the rail pushes back a little, so that the downward search (Touch) finds it
-    pushing_back = Wrench(Vector3(0.0, 0.0, 6.0), Vector3(0.0, 0.0, 0.0))
-    adapter = DryRunAdapter(sensors={"robot.wrench": pushing_back})
+    # the arm's motions end as on a real rail: Touch finds the lips, SnapOn hears the click
+    # (the force peaked, then fell) and Seat feels the housing sit on the lips
+    per_terminal = ["reached", "reached", "lifted", "reached", "reached"]
+    per_terminal += ["touched", "latched", "seated", "lifted"]
+    adapter = DryRunAdapter(
+        outcomes={"robot.moveCartesian": per_terminal * 3},
+        sensors={"robot.peakForce": 30.0},
+    )
     chart = component_class(package, "din_rail.tasks.AssembleRail")().start(adapter)
     assert chart.outcome == "assembled"
     tasks = [s for s in _states(chart) if s.count("/") == 1]
