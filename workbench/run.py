@@ -268,23 +268,6 @@ def drive(
     return chart
 
 
-def run_chart(
-    cls: type,
-    params: dict[str, Any],
-    adapter_name: str | None,
-    events: Sequence[str],
-    trace: Path | None,
-    progress: Callable[[dict[str, Any]], None] | None = None,
-) -> Any:
-    """Run the chart on a new adapter of that name (none for a plain statechart)."""
-    adapter = None if adapter_name is None else adapter_for(adapter_name, scene_of(cls))
-    try:
-        return drive(cls, params, adapter, events, trace, progress)
-    finally:
-        if adapter is not None:
-            adapter.close()
-
-
 class ModelError(Exception):
     """The model has check errors; the argument is the report."""
 
