@@ -3,7 +3,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test lint format bench clean
+.PHONY: demo test lint format bench pictures clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -24,6 +24,12 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_runtime.py
 	$(BIN)/python benchmarks/bench_adapters.py
 	$(BIN)/python benchmarks/bench_case_studies.py
+
+PICTURES := examples/screwing/skills/ScrewIn.lr examples/screwing/tasks/ScrewTask.lr \
+	examples/din_rail/tasks/AssembleRail.lr
+
+pictures: $(STAMP)
+	$(BIN)/lightrocks generate $(PICTURES) --path examples --target dot --option render=png -o docs/images
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

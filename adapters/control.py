@@ -13,8 +13,8 @@ import math
 import numpy as np
 import pinocchio as pin
 
-from adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
-from adapters.vec import symmetrize_upper
+from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
+from lightrocks.adapters.vec import symmetrize_upper
 
 DT = 0.001
 SLOW_EVERY = 10

@@ -16,11 +16,11 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 
-from adapters.control import DT, ArmState, CartesianImpedance, JointImpedance
-from adapters.robot_model import ARM_DOF, FT_SITE, HAND_BODY, READY_Q, load_robot
-from adapters.sensing import WristSensor
-from adapters.video import VideoRecorder
-from runtime.contract import (
+from lightrocks.adapters.control import DT, ArmState, CartesianImpedance, JointImpedance
+from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, HAND_BODY, READY_Q, load_robot
+from lightrocks.adapters.sensing import WristSensor
+from lightrocks.adapters.video import VideoRecorder
+from lightrocks.runtime.contract import (
     TIMEOUT,
     AdapterError,
     CommandResult,

@@ -18,7 +18,14 @@ from typing import Any
 
 import pinocchio as pin
 
-from runtime.contract import TIMEOUT, AdapterError, CommandResult, StopCondition, Vector3, Wrench
+from lightrocks.runtime.contract import (
+    TIMEOUT,
+    AdapterError,
+    CommandResult,
+    StopCondition,
+    Vector3,
+    Wrench,
+)
 
 SensorScript = Mapping[str, Any | Callable[[float], Any]]
 

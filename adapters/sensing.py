@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from adapters.control import DT
-from adapters.vec import cross
+from lightrocks.adapters.control import DT
+from lightrocks.adapters.vec import cross
 
 CUTOFF_HZ = 40.0
 GRAVITY = np.array([0.0, 0.0, -9.81])

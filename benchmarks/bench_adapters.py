@@ -22,10 +22,10 @@ import pinocchio as pin
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from adapters.mujoco import MujocoAdapter
-from adapters.pinocchio import PinocchioAdapter
-from adapters.robot_model import scene_path
-from runtime.contract import StopCondition
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.adapters.pinocchio import PinocchioAdapter
+from lightrocks.adapters.robot_model import scene_path
+from lightrocks.runtime.contract import StopCondition
 
 STOPS = [
     StopCondition("force", lambda s: abs(s.robot.wrench.force.z) > 1e3),

@@ -19,8 +19,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from adapters.scenes import goal_met
-from workbench.run import RunResult, run_once, run_seeds, wilson
+from lightrocks.adapters.scenes import goal_met
+from lightrocks.workbench.app.run import RunResult, run_once
+from lightrocks.workbench.app.seeds import run_seeds, wilson
 
 ROOT = Path(__file__).resolve().parents[1]
 NOISE = (0.002, math.radians(2.0))

@@ -11,7 +11,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from workbench.check import check
+from lightrocks.workbench.check import check
 
 SIZES = (1_000, 2_000, 5_000, 10_000)
 

@@ -18,8 +18,8 @@ from pathlib import Path
 from sismic.interpreter import Interpreter
 from sismic.io import import_from_yaml
 
-from workbench.check import check
-from workbench.run import component_class, generated_package
+from lightrocks.workbench.app.loading import component_class, generated_package
+from lightrocks.workbench.check import check
 
 
 def lightrocks_text(n: int) -> str:

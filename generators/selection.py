@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from languages.lightrocks.analysis import analysis
-from languages.lightrocks.model import Component, ModelSet
-from workbench.generators import GenerationRequest
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.languages.lightrocks.model import Component, ModelSet
+from lightrocks.workbench.generators import GenerationRequest
 
 
 def model_set(request: GenerationRequest) -> ModelSet:

@@ -11,8 +11,13 @@ from pathlib import Path
 
 from textx import generator
 
-from workbench.check import check
-from workbench.generators import GenerationError, GenerationRequest, load_generator, write_all
+from lightrocks.workbench.check import check
+from lightrocks.workbench.generators import (
+    GenerationError,
+    GenerationRequest,
+    load_generator,
+    write_all,
+)
 
 
 def _run(target: str, model, output_path: str | None) -> None:

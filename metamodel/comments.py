@@ -13,7 +13,7 @@ import bisect
 import re
 from dataclasses import dataclass
 
-from metamodel import ast
+from lightrocks.metamodel import ast
 
 # textX's STRING rule: a double- or single-quoted literal where only the quote is escaped.
 STRING = re.compile(r'("(\\"|[^"])*")|(\'(\\\'|[^\'])*\')')

@@ -10,8 +10,8 @@ from __future__ import annotations
 import bisect
 from typing import Any
 
-from metamodel import ast
-from metamodel.units import UnitError, lookup
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import UnitError, lookup
 
 
 class Converter:

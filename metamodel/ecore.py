@@ -19,7 +19,7 @@ from pyecore import ecore
 from pyecore.resources import ResourceSet
 from pyecore.resources.resource import URI
 
-from metamodel import ast
+from lightrocks.metamodel import ast
 
 NS_URI = "http://lightrocks.org/lightrocks/1.0"
 NAMED_UNIONS = {

@@ -28,10 +28,10 @@ import sys
 from collections import deque
 from collections.abc import Sequence
 
-from metamodel import ast
-from metamodel.comments import Comment, Comments
-from metamodel.convert import PRECEDENCE
-from metamodel.units import UnitError, lookup
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.comments import Comment, Comments
+from lightrocks.metamodel.convert import PRECEDENCE
+from lightrocks.metamodel.units import UnitError, lookup
 
 LINE_WIDTH = 100
 INDENT = "  "

@@ -3,9 +3,9 @@
 It depends on the standard library, numpy and pinocchio only, never on the workbench.
 """
 
-from runtime.binding import BindingError, bind, problems
-from runtime.component import ActionComponent, Cell, Component, CompositeComponent
-from runtime.contract import (
+from lightrocks.runtime.binding import BindingError, bind, problems
+from lightrocks.runtime.component import ActionComponent, Cell, Component, CompositeComponent
+from lightrocks.runtime.contract import (
     TIMEOUT,
     Adapter,
     AdapterError,
@@ -15,11 +15,19 @@ from runtime.contract import (
     Vector3,
     Wrench,
 )
-from runtime.environment import Environment, SceneObject, object_name
-from runtime.executor import ERROR, PREEMPTED, Executor, Fault
-from runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
-from runtime.states import Action, Composite, Condition, Final, Invariant, State, Transition
-from runtime.trace import Trace, to_json
+from lightrocks.runtime.environment import Environment, SceneObject, object_name
+from lightrocks.runtime.executor import ERROR, PREEMPTED, Executor, Fault
+from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
+from lightrocks.runtime.states import (
+    Action,
+    Composite,
+    Condition,
+    Final,
+    Invariant,
+    State,
+    Transition,
+)
+from lightrocks.runtime.trace import Trace, to_json
 
 DEFAULT_BUDGET = 30.0  # seconds, when neither the action nor its device names a timeout
 

@@ -11,7 +11,7 @@ import inspect
 from collections.abc import Mapping
 from typing import Any
 
-from runtime.contract import Adapter
+from lightrocks.runtime.contract import Adapter
 
 
 class BindingError(Exception):

@@ -11,12 +11,12 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import IO, Any, ClassVar, Self
 
-from runtime.binding import bind
-from runtime.contract import Adapter, Snapshot
-from runtime.environment import Environment
-from runtime.executor import Executor, Fault
-from runtime.states import Action, Composite
-from runtime.trace import Record, Trace
+from lightrocks.runtime.binding import bind
+from lightrocks.runtime.contract import Adapter, Snapshot
+from lightrocks.runtime.environment import Environment
+from lightrocks.runtime.executor import Executor, Fault
+from lightrocks.runtime.states import Action, Composite
+from lightrocks.runtime.trace import Record, Trace
 
 
 class Cell:

@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from runtime.frames import Frame
+from lightrocks.runtime.frames import Frame
 
 
 class SceneObject:

@@ -14,10 +14,10 @@ from functools import partial
 from types import SimpleNamespace
 from typing import Any
 
-from runtime.contract import TIMEOUT, Adapter, CommandResult, Snapshot, StopCondition
-from runtime.environment import Environment, SceneObject, object_name
-from runtime.states import Action, Composite, State, Transition
-from runtime.trace import Trace, to_json
+from lightrocks.runtime.contract import TIMEOUT, Adapter, CommandResult, Snapshot, StopCondition
+from lightrocks.runtime.environment import Environment, SceneObject, object_name
+from lightrocks.runtime.states import Action, Composite, State, Transition
+from lightrocks.runtime.trace import Trace, to_json
 
 ERROR, PREEMPTED = "error", "preempted"
 EVENT_STOP = "@event"

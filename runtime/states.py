@@ -12,7 +12,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
-from runtime.contract import Snapshot
+from lightrocks.runtime.contract import Snapshot
 
 Predicate = Callable[[Any, Snapshot], bool]
 Effect = Callable[[Any, Snapshot], None]

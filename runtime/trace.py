@@ -10,9 +10,9 @@ from typing import IO, Any
 
 import numpy as np
 
-from runtime.contract import Vector3, Wrench
-from runtime.environment import SceneObject, object_name
-from runtime.frames import Frame
+from lightrocks.runtime.contract import Vector3, Wrench
+from lightrocks.runtime.environment import SceneObject, object_name
+from lightrocks.runtime.frames import Frame
 
 Record = dict[str, Any]
 

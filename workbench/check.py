@@ -8,11 +8,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from workbench.cocos import CoCo
-from workbench.diagnostics import Diagnostics
-from workbench.languages import extensions, languages
-from workbench.modelpath import ModelPath, model_files, root_for
-from workbench.workspace import Workspace
+from lightrocks.workbench.cocos import CoCo
+from lightrocks.workbench.diagnostics import Diagnostics
+from lightrocks.workbench.languages import extensions, languages
+from lightrocks.workbench.modelpath import ModelPath, model_files, root_for
+from lightrocks.workbench.workspace import Workspace
 
 
 @dataclass

@@ -11,7 +11,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from workbench.diagnostics import Diagnostic, Severity
+from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from enum import Enum
 
-from metamodel.ast import Position
+from lightrocks.metamodel.ast import Position
 
 
 class Severity(Enum):

@@ -21,7 +21,7 @@ from typing import Protocol
 
 import jinja2
 
-from workbench.check import CheckContext
+from lightrocks.workbench.check import CheckContext
 
 
 @dataclass
@@ -79,14 +79,19 @@ def template_environment(builtin: Path, override: Path | None) -> jinja2.Environ
 
 
 def write_all(output: Path, files: Mapping[str, str | bytes]) -> list[Path]:
-    """Write every file or none: stage in a temporary folder inside ``output``, then move."""
-    if not output.is_dir():
-        raise GenerationError(f"output folder '{output}' does not exist")
+    """Write every file or none. A missing ``output`` is staged whole beside where it goes
+    and renamed into place; an existing one gets a staging folder inside, moved from."""
+    created = not output.exists()
+    if not created and not output.is_dir():
+        raise GenerationError(f"output '{output}' is not a folder")
     try:
-        staging = Path(tempfile.mkdtemp(prefix=".lightrocks-", dir=output))
+        if created:
+            output.parent.mkdir(parents=True, exist_ok=True)
+        staging = Path(
+            tempfile.mkdtemp(prefix=".lightrocks-", dir=output.parent if created else output)
+        )
     except OSError as error:
         raise GenerationError(f"cannot write to '{output}': {error.strerror}") from None
-    written: list[Path] = []
     try:
         for relative, content in sorted(files.items()):
             staged = staging / relative
@@ -95,13 +100,25 @@ def write_all(output: Path, files: Mapping[str, str | bytes]) -> list[Path]:
                 staged.write_bytes(content)
             else:
                 staged.write_text(content, encoding="utf-8", newline="\n")
+        if created:
+            staging.chmod(0o777 & ~_umask())
+            os.rename(staging, output)
+            return [output / relative for relative in sorted(files)]
+        written: list[Path] = []
         for relative in sorted(files):
             target = output / relative
             target.parent.mkdir(parents=True, exist_ok=True)
             os.replace(staging / relative, target)
             written.append(target)
+        return written
     except OSError as error:
         raise GenerationError(f"cannot write to '{output}': {error.strerror}") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
-    return written
+
+
+def _umask() -> int:
+    """The process's file-creation mask (read by setting it, then restoring it)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask

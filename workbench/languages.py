@@ -13,7 +13,7 @@ from functools import cache
 from importlib.metadata import entry_points
 from typing import Any
 
-from workbench.cocos import CoCo
+from lightrocks.workbench.cocos import CoCo
 
 
 @dataclass(frozen=True)

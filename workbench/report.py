@@ -7,8 +7,8 @@ import json
 from collections.abc import Callable, Sequence
 from importlib.metadata import version
 
-from workbench.cocos import CoCo
-from workbench.diagnostics import Diagnostic, Severity
+from lightrocks.workbench.cocos import CoCo
+from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 _SARIF_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}

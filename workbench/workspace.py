@@ -11,11 +11,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from metamodel.ast import Import, Position
-from metamodel.grammar import SyntaxProblem
-from workbench.diagnostics import Diagnostics, did_you_mean
-from workbench.languages import Language, extensions, language_for
-from workbench.modelpath import ModelPath
+from lightrocks.metamodel.ast import Import, Position
+from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench.diagnostics import Diagnostics, did_you_mean
+from lightrocks.workbench.languages import Language, extensions, language_for
+from lightrocks.workbench.modelpath import ModelPath
 
 IMPLICIT_PACKAGES = ("lightrocks",)
 

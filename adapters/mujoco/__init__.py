@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from adapters.devices import SimulatedCell
-from adapters.mujoco.plant import MujocoPlant
+from lightrocks.adapters.devices import SimulatedCell
+from lightrocks.adapters.mujoco.plant import MujocoPlant
 
 
 class MujocoAdapter(SimulatedCell):

@@ -7,9 +7,9 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from adapters import scene_hooks
-from adapters.control import DT
-from adapters.robot_model import (
+from lightrocks.adapters import scene_hooks
+from lightrocks.adapters.control import DT
+from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
     FINGER_JOINTS,

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from adapters.devices import SimulatedCell
-from adapters.pinocchio.plant import PinocchioPlant
+from lightrocks.adapters.devices import SimulatedCell
+from lightrocks.adapters.pinocchio.plant import PinocchioPlant
 
 
 class PinocchioAdapter(SimulatedCell):

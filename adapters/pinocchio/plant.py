@@ -23,9 +23,9 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 
-from adapters import scene_hooks
-from adapters.control import DT
-from adapters.robot_model import (
+from lightrocks.adapters import scene_hooks
+from lightrocks.adapters.control import DT
+from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
     FINGER_DAMPING,
@@ -40,7 +40,7 @@ from adapters.robot_model import (
     load_robot,
     scene_path,
 )
-from adapters.vec import cross
+from lightrocks.adapters.vec import cross
 
 CONTACT_STIFFNESS = 2e4
 """Normal penalty stiffness per contact point [N/m]."""

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from generators.selection import selected
-from metamodel.ecore import metamodel_text, model_text
-from workbench.generators import GenerationError, GenerationRequest
+from lightrocks.generators.selection import selected
+from lightrocks.metamodel.ecore import metamodel_text, model_text
+from lightrocks.workbench.generators import GenerationError, GenerationRequest
 
 
 class EcoreGenerator:

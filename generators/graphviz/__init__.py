@@ -1,42 +1,29 @@
 """Graphviz DOT pictures of statecharts: one ``.dot`` per selected statechart.
 
 Options: ``depth=N`` also draws the content of imported statecharts N levels deep (as
-clusters); ``render=svg|png`` runs the ``dot`` program next to each ``.dot`` file.
+clusters); ``render=svg|png`` draws each ``.dot`` file beside it (see ``rendering``).
 """
 
 from __future__ import annotations
 
-import shutil
-import subprocess
 from pathlib import Path
 
-from generators.graphviz.graph import Graph, quote
-from generators.selection import selected
-from workbench.generators import GenerationError, GenerationRequest, template_environment
+from lightrocks.generators.graphviz.graph import Graph, quote
+from lightrocks.generators.graphviz.rendering import FORMATS, render, renderer
+from lightrocks.generators.selection import selected
+from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
 TEMPLATES = Path(__file__).parent / "templates"
-FORMATS = ("svg", "png")
-
-
-def render(dot: str, fmt: str) -> bytes:
-    """The picture of ``dot`` drawn by Graphviz."""
-    program = shutil.which("dot")
-    if program is None:
-        raise GenerationError(
-            "render needs the Graphviz 'dot' program, which is not installed "
-            "(Debian/Ubuntu: apt-get install graphviz; macOS: brew install graphviz)"
-        )
-    result = subprocess.run(
-        [program, f"-T{fmt}"], input=dot.encode(), capture_output=True, check=False
-    )
-    if result.returncode != 0:
-        raise GenerationError(f"dot failed: {result.stderr.decode(errors='replace').strip()}")
-    return result.stdout
 
 
 class DotGenerator:
     name = "dot"
-    description = "Graphviz DOT of statecharts (options depth=N, render=svg|png)"
+
+    @property
+    def description(self) -> str:
+        found = renderer()
+        drawn = f"rendered by {found}" if found else "no renderer installed"
+        return f"Graphviz DOT of statecharts (options depth=N, render=svg|png; {drawn})"
 
     def generate(self, request: GenerationRequest) -> dict[str, str | bytes]:
         depth_text = request.options.get("depth", "0")

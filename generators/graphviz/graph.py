@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from languages.lightrocks.model import Component, Region, StateInfo
-from metamodel import ast, printer
+from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
+from lightrocks.metamodel import ast, printer
 
 
 def quote(text: str) -> str:

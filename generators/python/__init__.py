@@ -1,5 +1,5 @@
 """The python generator: statecharts as Python modules on :mod:`runtime`."""
 
-from generators.python.generator import GENERATOR, PythonGenerator
+from lightrocks.generators.python.generator import GENERATOR, PythonGenerator
 
 __all__ = ["GENERATOR", "PythonGenerator"]

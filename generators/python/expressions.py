@@ -11,11 +11,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from generators.python.names import attribute, identifier
-from languages.domain.types import FRAME, DeviceT, FunctionT, ObjectT, StructT, Type
-from languages.lightrocks.model import Region
-from languages.lightrocks.typing import Typing
-from metamodel import ast
+from lightrocks.generators.python.names import attribute, identifier
+from lightrocks.languages.domain.types import FRAME, DeviceT, FunctionT, ObjectT, StructT, Type
+from lightrocks.languages.lightrocks.model import Region
+from lightrocks.languages.lightrocks.typing import Typing
+from lightrocks.metamodel import ast
 
 OR, AND, NOT, COMPARE, ADD, MULTIPLY, UNARY, ATOM = 1, 2, 3, 4, 6, 7, 8, 10
 BINARY = {

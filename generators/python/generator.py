@@ -17,10 +17,10 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from generators.python import expressions as code
-from generators.python.expressions import CompileError, Scope
-from generators.python.names import identifier
-from languages.domain.types import (
+from lightrocks.generators.python import expressions as code
+from lightrocks.generators.python.expressions import CompileError, Scope
+from lightrocks.generators.python.names import identifier
+from lightrocks.languages.domain.types import (
     BOOLEAN,
     FRAME,
     STRING,
@@ -31,12 +31,12 @@ from languages.domain.types import (
     Type,
     VectorT,
 )
-from languages.lightrocks.analysis import analysis
-from languages.lightrocks.model import Component, Region, StateInfo
-from languages.lightrocks.typing import Typing
-from metamodel import ast
-from metamodel.units import UnitError, lookup
-from workbench.generators import GenerationError, GenerationRequest, template_environment
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
+from lightrocks.languages.lightrocks.typing import Typing
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import UnitError, lookup
+from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
 TEMPLATES = Path(__file__).with_name("templates")
 DOMAIN = "_domain"

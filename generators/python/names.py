@@ -5,7 +5,7 @@ from __future__ import annotations
 import builtins
 import keyword
 
-import runtime
+from lightrocks import runtime
 
 _RUNTIME = {
     name

@@ -5,12 +5,12 @@ from __future__ import annotations
 from collections import Counter
 from pathlib import Path
 
-from generators.selection import is_action, selected
-from generators.sfc_iec61131.build import Unit, UnitBuilder
-from generators.sfc_iec61131.checker import check_sfc
-from generators.sfc_iec61131.expressions import time_literal
-from languages.lightrocks.analysis import analysis
-from workbench.generators import GenerationError, GenerationRequest, template_environment
+from lightrocks.generators.selection import is_action, selected
+from lightrocks.generators.sfc_iec61131.build import Unit, UnitBuilder
+from lightrocks.generators.sfc_iec61131.checker import check_sfc
+from lightrocks.generators.sfc_iec61131.expressions import time_literal
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
 TEMPLATES = Path(__file__).parent / "templates"
 

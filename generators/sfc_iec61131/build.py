@@ -14,10 +14,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from generators.selection import is_action, reachable
-from generators.sfc_iec61131.expressions import Scope, field_name, literal, time_literal
-from generators.sfc_iec61131.names import Namer
-from languages.domain.types import (
+from lightrocks.generators.selection import is_action, reachable
+from lightrocks.generators.sfc_iec61131.expressions import Scope, field_name, literal, time_literal
+from lightrocks.generators.sfc_iec61131.names import Namer
+from lightrocks.languages.domain.types import (
     BOOLEAN,
     FRAME,
     STRING,
@@ -28,11 +28,11 @@ from languages.domain.types import (
     Type,
     VectorT,
 )
-from languages.lightrocks.model import Component, Region, StateInfo
-from languages.lightrocks.typing import Typing
-from metamodel import ast
-from metamodel.units import UnitError, lookup
-from workbench.generators import GenerationError
+from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
+from lightrocks.languages.lightrocks.typing import Typing
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import UnitError, lookup
+from lightrocks.workbench.generators import GenerationError
 
 DEFAULT_TIMEOUT = 30.0
 FRAME_FUNCTIONS = ("FRAME_MUL", "ROT_X", "ROT_Y", "ROT_Z", "TRANSL")

@@ -19,7 +19,7 @@ import re
 from collections import Counter
 from dataclasses import dataclass, field
 
-from generators.sfc_iec61131.reserved import is_reserved
+from lightrocks.generators.sfc_iec61131.reserved import is_reserved
 
 TOKEN = re.compile(
     r"\(\*.*?\*\)|//[^\n]*|'(?:\$.|[^'])*'|T#[\w.]+|[A-Za-z_]\w*|\d[\w.#]*|:=|\.\.|\S",

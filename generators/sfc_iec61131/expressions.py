@@ -5,9 +5,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from generators.sfc_iec61131.names import Namer
-from languages.domain.types import FRAME, DeviceT, Type
-from metamodel import ast
+from lightrocks.generators.sfc_iec61131.names import Namer
+from lightrocks.languages.domain.types import FRAME, DeviceT, Type
+from lightrocks.metamodel import ast
 
 OPERATORS = {"&&": "AND", "||": "OR", "==": "=", "!=": "<>", "%": "MOD"}
 FUNCTIONS = {

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 
-from generators.sfc_iec61131.reserved import is_reserved
+from lightrocks.generators.sfc_iec61131.reserved import is_reserved
 
 
 def legal(name: str) -> str:

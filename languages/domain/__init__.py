@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from languages.domain.cocos import COCOS
-from languages.domain.syntax import parse_domain
-from metamodel import ast
-from workbench.languages import Language
+from lightrocks.languages.domain.cocos import COCOS
+from lightrocks.languages.domain.syntax import parse_domain
+from lightrocks.metamodel import ast
+from lightrocks.workbench.languages import Language
 
 
 def _declarations(unit: ast.DomainUnit) -> list[tuple[str, Any]]:
@@ -15,7 +15,7 @@ def _declarations(unit: ast.DomainUnit) -> list[tuple[str, Any]]:
 
 
 def _format(text: str, file: str) -> str:
-    from languages.domain.printer import format_domain_text
+    from lightrocks.languages.domain.printer import format_domain_text
 
     return format_domain_text(text, file)
 

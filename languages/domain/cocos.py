@@ -4,12 +4,19 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from languages.domain.types import BUILTIN_TYPES, QuantityT, Types, VectorT, compatible, describe
-from metamodel import ast
-from metamodel.units import UnitError, lookup
-from workbench.cocos import coco
-from workbench.diagnostics import Severity, did_you_mean
-from workbench.workspace import Loaded
+from lightrocks.languages.domain.types import (
+    BUILTIN_TYPES,
+    QuantityT,
+    Types,
+    VectorT,
+    compatible,
+    describe,
+)
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import UnitError, lookup
+from lightrocks.workbench.cocos import coco
+from lightrocks.workbench.diagnostics import Severity, did_you_mean
+from lightrocks.workbench.workspace import Loaded
 
 Finding = tuple[ast.Position, str, str]
 

@@ -8,10 +8,10 @@ of a block come one per line. Comments are re-attached as described in
 
 from __future__ import annotations
 
-from languages.domain.syntax import parse_domain
-from metamodel import ast
-from metamodel.comments import Comments
-from metamodel.printer import Writer, expression, fit, header, parameter, stereotypes
+from lightrocks.languages.domain.syntax import parse_domain
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.comments import Comments
+from lightrocks.metamodel.printer import Writer, expression, fit, header, parameter, stereotypes
 
 
 def format_domain_text(text: str, file: str) -> str:

@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from metamodel import ast
-from metamodel.convert import Converter
-from metamodel.grammar import parse, paused_gc
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.convert import Converter
+from lightrocks.metamodel.grammar import parse, paused_gc
 
 GRAMMAR = Path(__file__).with_name("domain.tx")
 FRAGMENTS = ("common", "expressions")

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from metamodel import ast
-from metamodel.units import ANGLE, LENGTH, ONE, Dimension, UnitError, lookup
-from workbench.workspace import Loaded, Workspace
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import ANGLE, LENGTH, ONE, Dimension, UnitError, lookup
+from lightrocks.workbench.workspace import Loaded, Workspace
 
 
 @dataclass(frozen=True)

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from languages.lightrocks.cocos import COCOS
-from languages.lightrocks.syntax import parse_statechart
-from metamodel import ast
-from workbench.languages import Language
+from lightrocks.languages.lightrocks.cocos import COCOS
+from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.metamodel import ast
+from lightrocks.workbench.languages import Language
 
 
 def _declarations(unit: ast.StatechartUnit) -> list[tuple[str, Any]]:
@@ -15,7 +15,7 @@ def _declarations(unit: ast.StatechartUnit) -> list[tuple[str, Any]]:
 
 
 def _format(text: str, file: str) -> str:
-    from languages.lightrocks.printer import format_statechart_text
+    from lightrocks.languages.lightrocks.printer import format_statechart_text
 
     return format_statechart_text(text, file)
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property
 
-from languages.lightrocks.model import ModelSet
-from languages.lightrocks.typing import Typing
-from workbench.check import CheckContext
-from workbench.workspace import Workspace
+from lightrocks.languages.lightrocks.model import ModelSet
+from lightrocks.languages.lightrocks.typing import Typing
+from lightrocks.workbench.check import CheckContext
+from lightrocks.workbench.workspace import Workspace
 
 
 @dataclass

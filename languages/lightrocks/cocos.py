@@ -11,11 +11,11 @@ from pathlib import Path
 
 import networkx as nx
 
-from languages.lightrocks.analysis import Analysis, analysis
-from languages.lightrocks.model import BUILTIN_OUTCOMES, LAYERS, Component, Region
-from metamodel import ast
-from workbench.cocos import coco
-from workbench.diagnostics import Severity, did_you_mean
+from lightrocks.languages.lightrocks.analysis import Analysis, analysis
+from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, LAYERS, Component, Region
+from lightrocks.metamodel import ast
+from lightrocks.workbench.cocos import coco
+from lightrocks.workbench.diagnostics import Severity, did_you_mean
 
 Finding = tuple[ast.Position, str, str]
 

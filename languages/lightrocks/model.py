@@ -12,9 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 
-from metamodel import ast
-from workbench.diagnostics import Diagnostics, did_you_mean
-from workbench.workspace import Loaded, Workspace
+from lightrocks.metamodel import ast
+from lightrocks.workbench.diagnostics import Diagnostics, did_you_mean
+from lightrocks.workbench.workspace import Loaded, Workspace
 
 LAYERS = ("task", "skill", "action")
 BUILTIN_OUTCOMES = ("error", "timeout", "preempted")

@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from languages.lightrocks.syntax import parse_statechart
-from metamodel import ast
-from metamodel.comments import Comments
-from metamodel.printer import (
+from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.comments import Comments
+from lightrocks.metamodel.printer import (
     Writer,
     argument_parts,
     block,

@@ -2,8 +2,8 @@
 
 from textx import language
 
-from languages.lightrocks.syntax import FRAGMENTS, GRAMMAR
-from metamodel.grammar import textx_metamodel
+from lightrocks.languages.lightrocks.syntax import FRAGMENTS, GRAMMAR
+from lightrocks.metamodel.grammar import textx_metamodel
 
 
 @language("lightrocks", "*.lr")

@@ -12,7 +12,7 @@ from collections import defaultdict
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from languages.domain.types import (
+from lightrocks.languages.domain.types import (
     ANGLE_T,
     BOOLEAN,
     BUILTIN_FUNCTIONS,
@@ -35,11 +35,11 @@ from languages.domain.types import (
     describe,
     quantity_of,
 )
-from languages.lightrocks.model import Component, ModelSet, Region
-from metamodel import ast
-from metamodel.units import ONE, UnitError, lookup
-from workbench.diagnostics import did_you_mean
-from workbench.workspace import Loaded
+from lightrocks.languages.lightrocks.model import Component, ModelSet, Region
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import ONE, UnitError, lookup
+from lightrocks.workbench.diagnostics import did_you_mean
+from lightrocks.workbench.workspace import Loaded
 
 Finding = tuple[ast.Position, str, str]
 

@@ -2,8 +2,8 @@
 
 import pytest
 
-from adapters.mujoco import MujocoAdapter
-from adapters.pinocchio import PinocchioAdapter
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.adapters.pinocchio import PinocchioAdapter
 
 ADAPTERS = {"mujoco": MujocoAdapter, "pinocchio": PinocchioAdapter}
 

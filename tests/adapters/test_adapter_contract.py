@@ -4,9 +4,9 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from adapters.mujoco import MujocoAdapter
-from adapters.pinocchio import PinocchioAdapter
-from runtime.contract import Adapter, AdapterError, StopCondition, Vector3, Wrench
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.adapters.pinocchio import PinocchioAdapter
+from lightrocks.runtime.contract import Adapter, AdapterError, StopCondition, Vector3, Wrench
 
 DONE = StopCondition("done", lambda s: s.gripper.done)
 

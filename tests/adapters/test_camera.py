@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from adapters.mujoco import MujocoAdapter
-from adapters.pinocchio import PinocchioAdapter
-from runtime.contract import StopCondition
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.adapters.pinocchio import PinocchioAdapter
+from lightrocks.runtime.contract import StopCondition
 
 DONE = [StopCondition("done", lambda s: s.camera.done)]
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pinocchio as pin
 
-from runtime.contract import StopCondition
+from lightrocks.runtime.contract import StopCondition
 
 FINGERTIP_BELOW_TCP = 0.015
 BLOCK_TOP = 0.15

@@ -3,7 +3,7 @@
 import numpy as np
 import pinocchio as pin
 
-from runtime.contract import StopCondition
+from lightrocks.runtime.contract import StopCondition
 
 REACHED = [StopCondition("reached", lambda s: s.robot.goalReached)]
 

@@ -5,7 +5,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from adapters.robot_model import (
+from lightrocks.adapters.robot_model import (
     ARM_DOF,
     FINGER_TRAVEL,
     NV,
@@ -77,7 +77,7 @@ def test_scene_path_rejects_unknown_names():
 
 
 def test_finger_damping_constant_matches_the_model(models):
-    from adapters.robot_model import FINGER_DAMPING
+    from lightrocks.adapters.robot_model import FINGER_DAMPING
 
     mj_model, _, _ = models
     assert list(mj_model.dof_damping[ARM_DOF:]) == [FINGER_DAMPING, FINGER_DAMPING]

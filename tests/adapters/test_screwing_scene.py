@@ -15,10 +15,10 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from adapters import scenes
-from adapters.mujoco import MujocoAdapter
-from adapters.pinocchio import PinocchioAdapter
-from runtime.contract import StopCondition
+from lightrocks.adapters import scenes
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.adapters.pinocchio import PinocchioAdapter
+from lightrocks.runtime.contract import StopCondition
 
 SCENE = Path(scenes.__file__).parent / "models" / "screwing.xml"
 HALF_TURN = math.pi

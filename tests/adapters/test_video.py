@@ -6,9 +6,9 @@ import zlib
 import numpy as np
 import pytest
 
-from adapters.mujoco import MujocoAdapter
-from adapters.pinocchio import PinocchioAdapter
-from adapters.video import FPS, HEIGHT, WIDTH
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.adapters.pinocchio import PinocchioAdapter
+from lightrocks.adapters.video import FPS, HEIGHT, WIDTH
 
 
 def read_png(data: bytes) -> np.ndarray:

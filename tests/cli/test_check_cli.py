@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from workbench.check import all_cocos
-from workbench.cli import main
+from lightrocks.workbench.app.cli import main
+from lightrocks.workbench.check import all_cocos
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -92,7 +92,14 @@ def test_usage_errors_exit_2(argv: list[str], capsys: pytest.CaptureFixture[str]
 
 def test_usage_error_exits_2_as_a_process() -> None:
     result = subprocess.run(
-        [sys.executable, "-m", "workbench.cli", "check", "--no-such-option", str(TURNSTILE)],
+        [
+            sys.executable,
+            "-m",
+            "lightrocks.workbench.app.cli",
+            "check",
+            "--no-such-option",
+            str(TURNSTILE),
+        ],
         capture_output=True,
         text=True,
         timeout=120,
@@ -189,7 +196,7 @@ def test_list_languages(capsys: pytest.CaptureFixture[str]) -> None:
 
 def _printer_ready() -> bool:
     try:
-        from languages.lightrocks.printer import format_statechart_text  # noqa: F401
+        from lightrocks.languages.lightrocks.printer import format_statechart_text  # noqa: F401
     except ImportError:
         return False
     return True

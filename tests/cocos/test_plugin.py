@@ -11,17 +11,17 @@ from pathlib import Path
 
 import pytest
 
-import workbench.check
-from languages.lightrocks.analysis import analysis
+import lightrocks.workbench.check as checking
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.workbench.check import check
+from lightrocks.workbench.cocos import coco
+from lightrocks.workbench.diagnostics import Severity
+from lightrocks.workbench.languages import Language, languages
 from tests.cocos.cases import BASE, materialize
-from workbench.check import check
-from workbench.cocos import coco
-from workbench.diagnostics import Severity
-from workbench.languages import Language, languages
 
 
 @coco("LR9001", Severity.WARNING, "state names start with an upper-case letter")
-def capitalised_states(context: workbench.check.CheckContext) -> Iterator[tuple]:
+def capitalised_states(context: checking.CheckContext) -> Iterator[tuple]:
     for component in analysis(context).models.components:
         for region in component.region.regions():
             if region.loaded is not component.loaded:
@@ -48,8 +48,8 @@ HOUSE_RULES = Language(
 
 
 def test_plugin_coco_runs_with_the_others(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(workbench.check, "languages", lambda: (*languages(), HOUSE_RULES))
-    assert "LR9001" in [c.code for c in workbench.check.all_cocos()]
+    monkeypatch.setattr(checking, "languages", lambda: (*languages(), HOUSE_RULES))
+    assert "LR9001" in [c.code for c in checking.all_cocos()]
     pick = BASE["skills/Pick.lr"].replace("Reach", "reach")
     materialize(tmp_path, {**BASE, "skills/Pick.lr": pick})
     findings = check([tmp_path]).diagnostics.items

@@ -13,8 +13,9 @@ from pathlib import Path
 
 import pytest
 
-from adapters.scenes import SCREW_TARGET_DEPTH, goal_met
-from workbench.run import RunResult, run_once, run_seeds
+from lightrocks.adapters.scenes import SCREW_TARGET_DEPTH, goal_met
+from lightrocks.workbench.app.run import RunResult, run_once
+from lightrocks.workbench.app.seeds import run_seeds
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

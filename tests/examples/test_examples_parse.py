@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from languages.domain.syntax import parse_domain
-from languages.lightrocks.syntax import parse_statechart
+from lightrocks.languages.domain.syntax import parse_domain
+from lightrocks.languages.lightrocks.syntax import parse_statechart
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from workbench.check import check
-from workbench.generators import GenerationRequest, load_generator
+from lightrocks.workbench.check import check
+from lightrocks.workbench.generators import GenerationRequest, load_generator
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

@@ -5,7 +5,7 @@ from __future__ import annotations
 from conftest import SCREW_IN, SCREW_TASK, generate
 from pyecore.resources import URI, ResourceSet
 
-from metamodel.ecore import NS_URI
+from lightrocks.metamodel.ecore import NS_URI
 
 
 def _reload(tmp_path, files: dict[str, str], name: str):

@@ -7,8 +7,8 @@ import os
 import pytest
 from conftest import EXAMPLES, SCREW_IN, SCREW_TASK
 
-from workbench import generators
-from workbench.cli import main
+from lightrocks.workbench import generators
+from lightrocks.workbench.app.cli import main
 
 
 def _generate(output, *extra: str) -> int:
@@ -19,9 +19,15 @@ def _generate(output, *extra: str) -> int:
 def test_list_generators(capsys) -> None:
     assert main(["list", "generators"]) == 0
     listed = capsys.readouterr().out
-    for line in ("sfc  generators.sfc_iec61131:GENERATOR", "dot  generators.graphviz:GENERATOR"):
+    for line in (
+        "sfc  lightrocks.generators.sfc_iec61131:GENERATOR",
+        "dot  lightrocks.generators.graphviz:GENERATOR",
+        "ecore  lightrocks.generators.ecore:GENERATOR",
+        "python  lightrocks.generators.python:GENERATOR",
+    ):
         assert line in listed
-    assert "ecore  generators.ecore:GENERATOR" in listed
+    dot_line = next(line for line in listed.splitlines() if line.startswith("dot "))
+    assert "rendered by" in dot_line  # the renderer in use: system dot or graphviz-pure
 
 
 @pytest.mark.parametrize("target", ["sfc", "dot", "ecore"])
@@ -43,10 +49,33 @@ def test_options_and_templates_reach_the_generator(tmp_path) -> None:
     assert "INTERVAL := T#4ms" in text
 
 
-def test_missing_output_folder(tmp_path, capsys) -> None:
-    assert _generate(tmp_path / "missing") == 1
-    assert "does not exist" in capsys.readouterr().err
-    assert not (tmp_path / "missing").exists()
+def test_missing_output_folder_is_created(tmp_path) -> None:
+    out = tmp_path / "new" / "out"
+    assert _generate(out) == 0
+    assert (out / "ScrewTask.st").is_file()
+    assert [p.name for p in (tmp_path / "new").iterdir()] == ["out"]  # no staging left
+    assert oct(out.stat().st_mode & 0o777) == oct(0o777 & ~_umask())
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def test_missing_output_folder_is_not_created_on_failure(tmp_path, capsys) -> None:
+    out = tmp_path / "out"
+    assert _generate(out, "--option", "interval_ms=zero") == 1
+    assert not out.exists()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_output_that_is_a_file(tmp_path, capsys) -> None:
+    out = tmp_path / "out"
+    out.write_text("keep me")
+    assert _generate(out) == 1
+    assert "is not a folder" in capsys.readouterr().err
+    assert out.read_text() == "keep me"
 
 
 def test_read_only_output_folder(tmp_path, capsys, monkeypatch) -> None:

@@ -2,18 +2,29 @@
 
 from __future__ import annotations
 
-import shutil
 import subprocess
+from pathlib import Path
 
 import pytest
 from conftest import EXAMPLES, SCREW_IN, SCREW_TASK, assert_golden, generate
 
-import generators.graphviz as graphviz
-from generators.graphviz.graph import quote
-from workbench.generators import GenerationError
+import lightrocks.generators.graphviz.rendering as rendering
+from lightrocks.generators.graphviz.graph import quote
+from lightrocks.workbench.app.cli import main
+from lightrocks.workbench.generators import GenerationError
 
 STATECHARTS = sorted(EXAMPLES.rglob("*.lr"))
-needs_dot = pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz 'dot' not installed")
+
+
+@pytest.fixture(params=["as installed", "dot hidden"])
+def drawing(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> str:
+    """Every rendering test runs with whatever renderer is there, and again with an empty
+    ``PATH``, where only the bundled ``graphviz-pure`` is left."""
+    if request.param == "dot hidden":
+        monkeypatch.setenv("PATH", str(tmp_path))
+    found = rendering.renderer()
+    assert found is not None, "graphviz-pure is a dependency: a renderer must be found"
+    return found.name
 
 
 @pytest.fixture(scope="module")
@@ -25,19 +36,23 @@ def test_one_file_per_statechart(pictures: dict[str, str]) -> None:
     assert len(pictures) == len(STATECHARTS)
 
 
-@needs_dot
-def test_dot_accepts_every_picture(pictures: dict[str, str]) -> None:
+def test_renderer_accepts_every_picture(pictures: dict[str, str], drawing: str) -> None:
+    program = str(rendering.renderer().program)
     for name, text in pictures.items():
-        result = subprocess.run(["dot", "-Tsvg"], input=text.encode(), capture_output=True)
-        assert result.returncode == 0, (name, result.stderr.decode())
+        result = subprocess.run([program, "-Tsvg"], input=text.encode(), capture_output=True)
+        assert result.returncode == 0, (drawing, name, result.stderr.decode())
+
+
+def test_graphviz_pure_when_dot_is_hidden(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    monkeypatch.setenv("PATH", str(tmp_path))
+    assert rendering.renderer().name == "graphviz-pure"
 
 
 def test_golden(pictures: dict[str, str]) -> None:
     assert_golden("screwing.skills.ScrewIn.dot", pictures["screwing.skills.ScrewIn.dot"])
 
 
-@needs_dot
-def test_svg_of_screw_in_shows_states_conditions_and_outcomes() -> None:
+def test_svg_of_screw_in_shows_states_conditions_and_outcomes(drawing: str) -> None:
     svg = generate("dot", [SCREW_IN], {"render": "svg"})["screwing.skills.ScrewIn.svg"].decode()
     for text in ("Turn", "LetGo", "Rewind", "Regrasp"):
         assert f"&gt; {text}" in svg  # after its <<import=…>> stereotype
@@ -48,11 +63,26 @@ def test_svg_of_screw_in_shows_states_conditions_and_outcomes() -> None:
     assert "&lt;&lt;skill&gt;&gt; ScrewIn" in svg
 
 
-def test_png_of_screw_in_is_a_picture() -> None:
-    png = generate("dot", [SCREW_IN], {"render": "png"})["screwing.skills.ScrewIn.png"]
+def test_png_of_screw_in_is_a_picture(drawing: str) -> None:
+    files = generate("dot", [SCREW_IN], {"render": "png"})
+    png = files["screwing.skills.ScrewIn.png"]
     assert png.startswith(b"\x89PNG\r\n\x1a\n")
     width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
     assert width > 300 and height > 300
+    assert rendering.stamped_hash(png) == rendering.dot_hash(files["screwing.skills.ScrewIn.dot"])
+
+
+def test_cli_renders_png_into_a_new_folder(drawing: str, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    args = [str(SCREW_IN), "--path", str(EXAMPLES), "--target", "dot", "-o", str(out)]
+    assert main(["generate", *args, "--option", "render=png"]) == 0
+    assert (out / "screwing.skills.ScrewIn.png").read_bytes().startswith(b"\x89PNG")
+
+
+def test_stamp_survives_a_round_trip() -> None:
+    png = rendering.stamp_png(b"\x89PNG\r\n\x1a\n" + rendering._chunk(b"IHDR", bytes(13)), "ab")
+    assert rendering.stamped_hash(png) == "ab"
+    assert rendering.stamped_hash(b"\x89PNG\r\n\x1a\n") is None
 
 
 def test_depth_draws_imported_statecharts_as_clusters() -> None:
@@ -64,9 +94,9 @@ def test_depth_draws_imported_statecharts_as_clusters() -> None:
     assert "lhead=" in deep
 
 
-def test_render_without_dot_says_how_to_install(monkeypatch) -> None:
-    monkeypatch.setattr(graphviz.shutil, "which", lambda _: None)
-    with pytest.raises(GenerationError, match="apt-get install graphviz"):
+def test_render_without_any_renderer_says_how_to_install(monkeypatch) -> None:
+    monkeypatch.setattr(rendering, "renderer", lambda: None)
+    with pytest.raises(GenerationError, match="pip install graphviz-pure"):
         generate("dot", [SCREW_IN], {"render": "svg"})
 
 

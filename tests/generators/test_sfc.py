@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 from conftest import RAIL_TASK, SCREW_IN, SCREW_TASK, assert_golden, generate
 
-from generators.sfc_iec61131.checker import check_sfc
-from generators.sfc_iec61131.names import Namer, legal
-from workbench.generators import GenerationError
+from lightrocks.generators.sfc_iec61131.checker import check_sfc
+from lightrocks.generators.sfc_iec61131.names import Namer, legal
+from lightrocks.workbench.generators import GenerationError
 
 
 @pytest.fixture(scope="module")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from generators.sfc_iec61131.checker import check_sfc
+from lightrocks.generators.sfc_iec61131.checker import check_sfc
 
 GOOD = """
 FUNCTION_BLOCK Demo

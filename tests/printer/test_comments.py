@@ -7,11 +7,11 @@ from pathlib import Path
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from languages.domain.printer import format_domain_text
-from languages.domain.syntax import parse_domain
-from languages.lightrocks.printer import format_statechart_text
-from languages.lightrocks.syntax import parse_statechart
-from metamodel.comments import Comments
+from lightrocks.languages.domain.printer import format_domain_text
+from lightrocks.languages.domain.syntax import parse_domain
+from lightrocks.languages.lightrocks.printer import format_statechart_text
+from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.metamodel.comments import Comments
 
 MODELS = Path(__file__).parent / "models"
 

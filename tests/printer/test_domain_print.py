@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from languages.domain.printer import format_domain_text, print_domain
-from languages.domain.syntax import parse_domain
-from metamodel.grammar import SyntaxProblem
+from lightrocks.languages.domain.printer import format_domain_text, print_domain
+from lightrocks.languages.domain.syntax import parse_domain
+from lightrocks.metamodel.grammar import SyntaxProblem
 
 MODELS = sorted((Path(__file__).parent / "models").glob("*.lrd"))
 

@@ -6,11 +6,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from languages.lightrocks.syntax import parse_statechart
-from metamodel import ast
-from metamodel.convert import PRECEDENCE
-from metamodel.printer import expression, string
-from metamodel.units import lookup
+from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.convert import PRECEDENCE
+from lightrocks.metamodel.printer import expression, string
+from lightrocks.metamodel.units import lookup
 
 
 def parse_expression(text: str) -> ast.Expression:

@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from languages.lightrocks.printer import format_statechart_text, print_statechart
-from languages.lightrocks.syntax import parse_statechart
-from metamodel import ast
-from metamodel.grammar import SyntaxProblem
+from lightrocks.languages.lightrocks.printer import format_statechart_text, print_statechart
+from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.grammar import SyntaxProblem
 
 MODELS = sorted((Path(__file__).parent / "models").glob("*.lr"))
 

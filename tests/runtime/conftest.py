@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from workbench import report
-from workbench.check import all_cocos, check
-from workbench.run import component_class, generated_package
+from lightrocks.workbench import report
+from lightrocks.workbench.app.loading import component_class, generated_package
+from lightrocks.workbench.check import all_cocos, check
 
 DOMAIN = """package t;
 

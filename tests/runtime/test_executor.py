@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from adapters.dryrun import DryRunAdapter
-from runtime import BindingError
+from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.runtime import BindingError
 
 
 def kinds(chart, *wanted: str) -> list[tuple[str, str]]:

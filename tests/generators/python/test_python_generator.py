@@ -8,13 +8,14 @@ from pathlib import Path
 
 import pytest
 
-from adapters.dryrun import DryRunAdapter
-from generators.python import GENERATOR
-from runtime import Vector3
-from workbench.check import check
-from workbench.cli import main
-from workbench.generators import GenerationRequest
-from workbench.run import component_class, generated_package, parse_value
+from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.generators.python import GENERATOR
+from lightrocks.runtime import Vector3
+from lightrocks.workbench.app.cli import main
+from lightrocks.workbench.app.loading import component_class, generated_package
+from lightrocks.workbench.app.values import parse_value
+from lightrocks.workbench.check import check
+from lightrocks.workbench.generators import GenerationRequest
 
 EXAMPLES = Path(__file__).parents[3] / "examples"
 

@@ -11,15 +11,20 @@ from pathlib import Path
 
 from rich.console import Console
 
-from metamodel.ast import Position
-from metamodel.grammar import SyntaxProblem
-from workbench import report
-from workbench.check import all_cocos, check
-from workbench.diagnostics import Diagnostics
-from workbench.files import write_atomic
-from workbench.generators import GenerationError, GenerationRequest, load_generator, write_all
-from workbench.languages import extensions, language_for, languages
-from workbench.modelpath import model_files
+from lightrocks.metamodel.ast import Position
+from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench import report
+from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.diagnostics import Diagnostics
+from lightrocks.workbench.files import write_atomic
+from lightrocks.workbench.generators import (
+    GenerationError,
+    GenerationRequest,
+    load_generator,
+    write_all,
+)
+from lightrocks.workbench.languages import extensions, language_for, languages
+from lightrocks.workbench.modelpath import model_files
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
 
@@ -124,7 +129,9 @@ def _configure_generate(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("generate", help="generate code or pictures from checked models")
     parser.add_argument("models", nargs="+", help="model files or folders")
     parser.add_argument("--target", required=True, help="generator name (see 'list generators')")
-    parser.add_argument("-o", "--output", required=True, help="existing output folder")
+    parser.add_argument(
+        "-o", "--output", required=True, help="output folder (created when missing)"
+    )
     _path_option(parser)
     parser.add_argument("--templates", help="folder whose templates override the built-in ones")
     parser.add_argument(
@@ -195,7 +202,12 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
 def cmd_run(args: argparse.Namespace) -> int:
     from functools import partial
 
-    from workbench import run
+    from lightrocks.workbench.app import display, values
+    from lightrocks.workbench.app.adapter_factory import adapter_options
+    from lightrocks.workbench.app.errors import ModelError, RunError
+    from lightrocks.workbench.app.loading import load_component
+    from lightrocks.workbench.app.run import run_component, success_outcome
+    from lightrocks.workbench.app.seeds import run_seeds
 
     model = existing_paths([args.model])[0].resolve()
     search_path = existing_paths(args.path)
@@ -210,15 +222,15 @@ def cmd_run(args: argparse.Namespace) -> int:
     if args.seeds is not None and args.video:
         raise UsageError("--video records a single run: leave out --seeds")
     try:
-        noise = run.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
-        cls = run.load_component(model, search_path)
-        wanted = run.success_outcome(cls, args.success)
-        run.parameters(cls, args.param)
-        run.adapter_options(args.adapter, args.seed, noise, args.video)
+        noise = values.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
+        cls = load_component(model, search_path)
+        wanted = success_outcome(cls, args.success)
+        values.parameters(cls, args.param)
+        adapter_options(args.adapter, args.seed, noise, args.video)
         if args.seeds is not None:
             seeds = range(args.seed, args.seed + args.seeds)
             many = partial(
-                run.run_seeds,
+                run_seeds,
                 model,
                 search_path,
                 args.param,
@@ -230,9 +242,9 @@ def cmd_run(args: argparse.Namespace) -> int:
                 success=args.success,
                 workers=args.workers,
             )
-            return run.show_seeds(cls.NAME, wanted, len(seeds), many)
+            return display.show_seeds(cls.NAME, wanted, len(seeds), many)
         single = partial(
-            run.run_component,
+            run_component,
             cls,
             args.param,
             args.adapter,
@@ -243,11 +255,11 @@ def cmd_run(args: argparse.Namespace) -> int:
             events=events,
             success=args.success,
         )
-        return run.show(cls.NAME, single)
-    except run.ModelError as error:
+        return display.show(cls.NAME, single)
+    except ModelError as error:
         print(error)
         return EXIT_FINDINGS
-    except (run.RunError, GenerationError) as error:
+    except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
 
 
@@ -264,6 +276,11 @@ def cmd_list(args: argparse.Namespace) -> int:
         rows = [(lang.name, " ".join(lang.extensions), lang.description) for lang in languages()]
     elif args.what == "cocos":
         rows = [(c.code, c.severity.value, c.summary) for c in all_cocos()]
+    elif args.what == "generators":
+        rows = [
+            (e.name, e.value, load_generator(e.name).description)
+            for e in sorted(entry_points(group="lightrocks.generators"), key=str)
+        ]
     else:
         group = f"lightrocks.{args.what}"
         rows = [(e.name, e.value, "") for e in sorted(entry_points(group=group), key=str)]

@@ -1,0 +1,57 @@
+"""What ``pip install`` puts on a machine: one import package, ``lightrocks``, with its
+data files; the repository's folder names are not importable on their own."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory: pytest.TempPathFactory) -> zipfile.ZipFile:
+    out = tmp_path_factory.mktemp("wheel")
+    subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "-q", "-w", str(out)],
+        check=True,
+        capture_output=True,
+    )
+    (built,) = out.glob("lightrocks-*.whl")
+    return zipfile.ZipFile(built)
+
+
+def test_wheel_has_exactly_one_top_level_package(wheel: zipfile.ZipFile) -> None:
+    top = {name.split("/")[0] for name in wheel.namelist()}
+    assert {t for t in top if not t.endswith(".dist-info")} == {"lightrocks"}
+
+
+def test_wheel_carries_every_module_and_data_file(wheel: zipfile.ZipFile) -> None:
+    names = set(wheel.namelist())
+    for folder in ("metamodel", "languages", "workbench", "generators", "runtime", "adapters"):
+        for path in (ROOT / folder).rglob("*"):
+            if path.suffix in {".py", ".tx", ".jinja", ".xml", ".lrd"}:
+                assert f"lightrocks/{path.relative_to(ROOT)}" in names
+
+
+def test_entry_points_name_the_namespace(wheel: zipfile.ZipFile) -> None:
+    dist_info = next(n for n in wheel.namelist() if n.endswith("entry_points.txt"))
+    text = wheel.read(dist_info).decode()
+    assert "lightrocks = lightrocks.workbench.app.cli:main" in text
+    values = [line.split("=", 1)[1].strip() for line in text.splitlines() if "=" in line]
+    assert values and all(v.startswith("lightrocks.") for v in values)
+
+
+@pytest.mark.parametrize(
+    ("statement", "works"),
+    [("import lightrocks.runtime", True), ("import runtime", False), ("import adapters", False)],
+)
+def test_installed_names(tmp_path: Path, statement: str, works: bool) -> None:
+    result = subprocess.run(
+        [sys.executable, "-c", statement], cwd=tmp_path, capture_output=True, check=False
+    )
+    assert (result.returncode == 0) == works, result.stderr.decode()

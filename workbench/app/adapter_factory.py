@@ -1,0 +1,50 @@
+"""Adapters by name, from the ``lightrocks.adapters`` entry points, with the options their
+signature accepts."""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Callable
+from importlib.metadata import entry_points
+from typing import Any
+
+from lightrocks.workbench.app.errors import RunError
+from lightrocks.workbench.app.values import Noise
+
+
+def adapter_factory(name: str) -> Callable[..., Any]:
+    found = {e.name: e for e in entry_points(group="lightrocks.adapters")}
+    if name not in found:
+        raise RunError(f"unknown adapter '{name}'; known: {', '.join(sorted(found))}")
+    return found[name].load()
+
+
+def adapter_options(
+    name: str | None, seed: int = 0, noise: Noise = (0.0, 0.0), video: str | None = None
+) -> dict[str, Any]:
+    """Keyword arguments for the adapter, read off its signature so that nothing it cannot
+    honour (noise, a video) is silently dropped; the seed only matters to adapters that
+    draw random numbers."""
+    if name is None:
+        if any(noise) or video is not None:
+            raise RunError("perception noise and video need an adapter (--adapter)")
+        return {}
+    accepted = inspect.signature(adapter_factory(name)).parameters
+    options: dict[str, Any] = {"seed": seed} if "seed" in accepted else {}
+    if any(noise):
+        if "perception_noise" not in accepted:
+            raise RunError(f"adapter '{name}' has no perception noise")
+        options["perception_noise"] = noise
+    if video is not None:
+        if "video" not in accepted:
+            raise RunError(f"adapter '{name}' cannot record a video")
+        options["video"] = video
+    return options
+
+
+def adapter_for(name: str, scene: str | None, **options: Any) -> Any:
+    return adapter_factory(name)(scene=scene, **options)
+
+
+def scene_of(cls: type) -> str | None:
+    return cls.CELL.SCENE if cls.CELL is not None else None

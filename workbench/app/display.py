@@ -1,0 +1,143 @@
+"""Terminal display of runs: a live status line or progress bar on stderr, the summary
+tables on stdout."""
+
+from __future__ import annotations
+
+import math
+import statistics
+from collections.abc import Callable
+from typing import Any
+
+from lightrocks.workbench.app.run import RunResult
+from lightrocks.workbench.app.seeds import wilson
+
+_SCALES = {
+    "_depth": (1e3, "mm", 1),
+    "_height": (1e3, "mm", 1),
+    "_angle": (180 / math.pi, "deg", 1),
+    "_torque": (1.0, "Nm", 3),
+}
+"""Measurement key suffix -> factor from SI, unit, decimals."""
+
+
+def measurement_label(key: str) -> str:
+    return key.replace("_", " ")
+
+
+def key_measurements(measured: dict[str, float | bool]) -> dict[str, float | bool]:
+    """What a per-seed row shows: the yes/no results and the depths."""
+    return {k: v for k, v in measured.items() if isinstance(v, bool) or k.endswith("_depth")}
+
+
+def format_measurement(key: str, value: float | bool | str) -> str:
+    """Readable value: metres as millimetres, radians as degrees, booleans as yes/no."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if not isinstance(value, int | float):
+        return str(value)
+    for suffix, (factor, unit, decimals) in _SCALES.items():
+        if key.endswith(suffix):
+            return f"{value * factor:.{decimals}f} {unit}"
+    return f"{value:g}"
+
+
+def show(name: str, run: Callable[..., RunResult]) -> int:
+    """Call ``run(progress=…)`` with a live status line on stderr (simulated time, active
+    state path) and print the summary on stdout; 0 when it ended with the success outcome."""
+    from rich.console import Console
+    from rich.table import Table
+
+    with Console(stderr=True, highlight=False, markup=False).status("starting") as status:
+        path = ""
+
+        def progress(record: dict[str, Any]) -> None:
+            nonlocal path
+            if record["kind"] == "enter":
+                path = record["state"]
+            elif record["kind"] == "exit":
+                path = record["state"].rpartition("/")[0]
+            status.update(f"{record['time']:8.3f} s  {path}")
+
+        result = run(progress=progress)
+    console = Console(highlight=False, markup=False)
+    outcome = result.outcome or "not finished"
+    if result.skills:
+        table = Table(title=f"{name}: {outcome}", title_justify="left")
+        table.add_column("skill")
+        table.add_column("time [s]", justify="right")
+        for skill, seconds in result.skills:
+            table.add_row(skill, f"{seconds:.3f}")
+        console.print(table)
+    if result.measurements:
+        table = Table()
+        table.add_column("measurement")
+        table.add_column("value", justify="right")
+        for key, value in result.measurements.items():
+            table.add_row(measurement_label(key), format_measurement(key, value))
+        console.print(table)
+    print(f"outcome: {outcome} after {result.time:.3f} s")
+    if result.active:
+        print("active: " + " / ".join(result.active))
+    if result.fault:
+        print(f"error: {result.fault}")
+    return 0 if result.success else 1
+
+
+def show_seeds(
+    name: str, wanted: str | None, runs: int, run: Callable[..., list[RunResult]]
+) -> int:
+    """Call ``run(done=…)`` with a progress bar on stderr; print a row per seed, the success
+    rate with its 95 % Wilson interval and the spread of the simulated time on stdout.
+    0 when every run ended with the success outcome."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.table import Table
+
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("{task.fields[succeeded]} succeeded"),
+        TimeElapsedColumn(),
+    )
+    with Progress(*columns, console=Console(stderr=True, highlight=False)) as bar:
+        task = bar.add_task(name, total=runs, succeeded=0)
+        succeeded = 0
+
+        def done(result: RunResult) -> None:
+            nonlocal succeeded
+            succeeded += result.success
+            bar.update(task, advance=1, succeeded=succeeded)
+
+        results = run(done=done)
+    keys = list(dict.fromkeys(k for r in results for k in key_measurements(r.measurements)))
+    table = Table(title=f"{name}: {len(results)} runs", title_justify="left")
+    table.add_column("seed", justify="right")
+    table.add_column("outcome")
+    table.add_column("time [s]", justify="right")
+    for key in keys:
+        table.add_column(measurement_label(key), justify="right")
+    for result in results:
+        measured = result.measurements
+        cells = [format_measurement(k, measured[k]) if k in measured else "" for k in keys]
+        table.add_row(
+            str(result.seed), result.outcome or "not finished", f"{result.time:.3f}", *cells
+        )
+    Console(highlight=False, markup=False).print(table)
+    for result in results:
+        if result.fault:
+            print(f"seed {result.seed}: error: {result.fault}")
+    count = sum(r.success for r in results)
+    low, high = wilson(count, len(results))
+    label = wanted or "finished without error"
+    print(
+        f"success ({label}): {count}/{len(results)} = {count / len(results):.0%}, "
+        f"95% Wilson interval {low:.0%}–{high:.0%}"
+    )
+    times = [r.time for r in results]
+    spread = statistics.stdev(times) if len(times) > 1 else 0.0
+    print(
+        f"simulated time: {statistics.fmean(times):.3f} ± {spread:.3f} s, "
+        f"min {min(times):.3f} s, max {max(times):.3f} s"
+    )
+    return 0 if count == len(results) else 1

@@ -1,0 +1,73 @@
+"""Check → generate → cache → import: the generated class of a model's statechart.
+
+The cache folder is named by a hash of every loaded model's text, so an unchanged model is
+generated once. Generated modules are imported with importlib from that folder; model text
+itself is never executed.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import importlib.util
+import os
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from types import ModuleType
+
+from lightrocks.generators.python import GENERATOR
+from lightrocks.generators.python.generator import module_path
+from lightrocks.generators.python.names import identifier
+from lightrocks.workbench import report
+from lightrocks.workbench.app.errors import ModelError
+from lightrocks.workbench.check import CheckContext, all_cocos, check
+from lightrocks.workbench.generators import GenerationRequest, write_all
+
+
+def cache_root() -> Path:
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    return Path(xdg) / "lightrocks" if xdg else Path.cwd() / ".lightrocks-cache"
+
+
+def content_key(context: CheckContext) -> str:
+    digest = hashlib.sha256()
+    for loaded in sorted(context.workspace.loaded_units(), key=lambda u: str(u.path)):
+        digest.update(str(loaded.path).encode() + b"\0" + loaded.path.read_bytes() + b"\0")
+    return digest.hexdigest()[:16]
+
+
+def generated_package(context: CheckContext, files: list[Path], root: Path) -> ModuleType:
+    """Generate (once per content) and import the package of every loaded statechart."""
+    key = content_key(context)
+    folder = root / key
+    if not (folder / "__init__.py").exists():
+        folder.mkdir(parents=True, exist_ok=True)
+        write_all(folder, GENERATOR.generate(GenerationRequest(context, files)))
+    name = f"lightrocks_{key}"
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(
+            name, folder / "__init__.py", submodule_search_locations=[str(folder)]
+        )
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+    return sys.modules[name]
+
+
+def component_class(package: ModuleType, qualified_name: str) -> type:
+    """The generated class of a statechart, by its qualified model name."""
+    dotted = module_path(qualified_name).removesuffix(".py").replace("/", ".")
+    module = importlib.import_module(f"{package.__name__}.{dotted}")
+    return getattr(module, identifier(qualified_name.rpartition(".")[2]))
+
+
+def load_component(model: Path, search_path: Sequence[Path]) -> type:
+    """Check the model, generate it (once per content) and import the class of its chart."""
+    context = check([model], list(search_path))
+    if context.diagnostics.has_errors:
+        raise ModelError(report.text(context.diagnostics.items, all_cocos()))
+    unit = next(u.unit for u in context.workspace.loaded_units() if u.path == model.resolve())
+    name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
+    package = generated_package(context, [model.resolve()], cache_root())
+    return component_class(package, name)

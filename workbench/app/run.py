@@ -1,0 +1,171 @@
+"""One run of a generated statechart: bind it to an adapter, drive it, summarize it.
+
+``run_once`` takes picklable inputs only, so that a worker process can do it on its own.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from lightrocks.workbench.app.adapter_factory import adapter_for, adapter_options, scene_of
+from lightrocks.workbench.app.errors import RunError
+from lightrocks.workbench.app.loading import load_component
+from lightrocks.workbench.app.values import Noise, parameters
+
+
+def success_outcome(cls: type, chosen: str | None = None) -> str | None:
+    """The outcome that counts as success: ``chosen``, else the first declared end condition
+    (final states come after end conditions in ``OUTCOMES``)."""
+    if chosen is None:
+        return cls.OUTCOMES[0] if cls.OUTCOMES else None
+    if chosen not in cls.OUTCOMES:
+        known = ", ".join(cls.OUTCOMES) or "none"
+        raise RunError(f"{cls.NAME} has no outcome '{chosen}'; outcomes: {known}")
+    return chosen
+
+
+@dataclass
+class Summary:
+    outcome: str | None
+    time: float
+    skills: list[tuple[str, float]]
+    fault: str
+
+
+def summarize(chart: Any) -> Summary:
+    """Outcome, run time and the time spent in every skill (from the trace)."""
+    entered: dict[str, float] = {}
+    skills: list[tuple[str, float]] = []
+    for record in chart.trace:
+        if record["kind"] == "enter" and record.get("layer") == "skill":
+            entered[record["state"]] = record["time"]
+        elif record["kind"] == "exit" and record["state"] in entered:
+            skills.append((record["state"], record["time"] - entered.pop(record["state"])))
+    fault = chart.fault
+    described = ""
+    if fault is not None and chart.outcome == "error":
+        described = f"{fault.message} at {fault.location or '?'} via {' <- '.join(fault.origin)}"
+    return Summary(
+        chart.outcome,
+        chart.trace[-1]["time"] if chart.trace else 0.0,
+        skills,
+        described,
+    )
+
+
+def drive(
+    cls: type,
+    params: dict[str, Any],
+    adapter: Any,
+    events: Sequence[str],
+    trace: Path | None,
+    progress: Callable[[dict[str, Any]], None] | None = None,
+) -> Any:
+    """Create, bind and run the chart; send the events once it rests.
+
+    The binding is checked before the trace file is opened, so a run that cannot start
+    leaves no file behind.
+    """
+    from lightrocks.runtime import BindingError, Trace
+    from lightrocks.runtime.binding import bind
+
+    chart = cls(**params)
+    try:
+        if adapter is not None:
+            bind(adapter, cls.CELL)
+    except BindingError as error:
+        raise RunError(str(error)) from None
+    recorder = Trace(trace)
+    if progress is not None:
+        recorder.listeners.append(progress)
+    try:
+        chart.start(adapter, trace=recorder)
+        for event in events:
+            if chart.finished:
+                break
+            chart.send(event)
+    finally:
+        recorder.close()
+    return chart
+
+
+@dataclass
+class RunResult:
+    """What one run gives a report or a benchmark; plain data, so it crosses processes."""
+
+    seed: int
+    outcome: str | None
+    success: bool
+    time: float
+    skills: list[tuple[str, float]]
+    measurements: dict[str, float | bool]
+    fault: str
+    active: tuple[str, ...]
+    """The active configuration when the run did not finish."""
+
+
+def run_component(
+    cls: type,
+    params: Sequence[str],
+    adapter: str | None,
+    seed: int = 0,
+    noise: Noise = (0.0, 0.0),
+    trace: Path | None = None,
+    video: str | None = None,
+    *,
+    events: Sequence[str] = (),
+    success: str | None = None,
+    progress: Callable[[dict[str, Any]], None] | None = None,
+) -> RunResult:
+    """One run of a loaded chart; the measurements are read before the adapter is closed,
+    because closing ends its simulation."""
+    wanted = success_outcome(cls, success)
+    values = parameters(cls, params)
+    options = adapter_options(adapter, seed, noise, video)
+    device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
+    try:
+        chart = drive(cls, values, device, events, trace, progress)
+        measure = getattr(device, "measurements", None)
+        measured = dict(measure()) if measure is not None else {}
+    finally:
+        if device is not None:
+            device.close()
+    summary = summarize(chart)
+    if wanted is None:
+        succeeded = chart.finished and summary.outcome != "error"
+    else:
+        succeeded = summary.outcome == wanted
+    return RunResult(
+        seed,
+        summary.outcome,
+        succeeded,
+        summary.time,
+        summary.skills,
+        measured,
+        summary.fault,
+        () if chart.finished else chart.active_configuration,
+    )
+
+
+def run_once(
+    model: Path,
+    search_path: Sequence[Path],
+    params: Sequence[str],
+    adapter: str | None,
+    seed: int = 0,
+    noise: Noise = (0.0, 0.0),
+    trace: Path | None = None,
+    video: str | None = None,
+    *,
+    events: Sequence[str] = (),
+    success: str | None = None,
+) -> RunResult:
+    """One run from picklable inputs only, so that a worker process can do it on its own:
+    the generated code is imported again from the cache, never pickled."""
+    cls = load_component(model, search_path)
+    return run_component(
+        cls, params, adapter, seed, noise, trace, video, events=events, success=success
+    )
