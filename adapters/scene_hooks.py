@@ -36,7 +36,7 @@ class FixtureTwin(Protocol):
 
 def _scenes() -> ModuleType | None:
     try:
-        return importlib.import_module("adapters.scenes")
+        return importlib.import_module("lightrocks.adapters.scenes")
     except ModuleNotFoundError:
         return None
 

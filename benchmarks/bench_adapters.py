@@ -14,13 +14,10 @@ from __future__ import annotations
 import math
 import sys
 import time
-from pathlib import Path
 
 import mujoco
 import numpy as np
 import pinocchio as pin
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter

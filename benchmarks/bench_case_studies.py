@@ -17,8 +17,6 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
 from lightrocks.adapters.scenes import goal_met
 from lightrocks.workbench.app.run import RunResult, run_once
 from lightrocks.workbench.app.seeds import run_seeds, wilson

@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
+from cocos.cases import CASES, Case, materialize
 from lightrocks.workbench.check import all_cocos, check
 from lightrocks.workbench.diagnostics import Diagnostic
-from tests.cocos.cases import CASES, Case, materialize
 
 LOADER_CODES = {"LR0001", "LR0002", "LR0003", "LR0004", "LR0102", "LR0104"}
 

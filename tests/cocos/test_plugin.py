@@ -12,12 +12,12 @@ from pathlib import Path
 import pytest
 
 import lightrocks.workbench.check as checking
+from cocos.cases import BASE, materialize
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench.check import check
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity
 from lightrocks.workbench.languages import Language, languages
-from tests.cocos.cases import BASE, materialize
 
 
 @coco("LR9001", Severity.WARNING, "state names start with an upper-case letter")

@@ -3,6 +3,7 @@ data files; the repository's folder names are not importable on their own."""
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -11,13 +12,17 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
+IGNORED = (".git", ".venv", "build", "*.egg-info", "__pycache__", ".*_cache", "out")
 
 
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory: pytest.TempPathFactory) -> zipfile.ZipFile:
+    """Built from a copy of the sources, so that no ``build/`` folder lands in the project."""
+    source = tmp_path_factory.mktemp("source") / "lightrocks"
+    shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(*IGNORED))
     out = tmp_path_factory.mktemp("wheel")
     subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "-q", "-w", str(out)],
+        [sys.executable, "-m", "pip", "wheel", str(source), "--no-deps", "-q", "-w", str(out)],
         check=True,
         capture_output=True,
     )
@@ -48,10 +53,20 @@ def test_entry_points_name_the_namespace(wheel: zipfile.ZipFile) -> None:
 
 @pytest.mark.parametrize(
     ("statement", "works"),
-    [("import lightrocks.runtime", True), ("import runtime", False), ("import adapters", False)],
+    [
+        ("import lightrocks.runtime", True),
+        ("import lightrocks.adapters.scenes", True),
+        ("import runtime", False),
+        ("import adapters", False),
+    ],
 )
 def test_installed_names(tmp_path: Path, statement: str, works: bool) -> None:
     result = subprocess.run(
         [sys.executable, "-c", statement], cwd=tmp_path, capture_output=True, check=False
     )
     assert (result.returncode == 0) == works, result.stderr.decode()
+
+
+def test_the_suite_cannot_import_the_folders_by_accident() -> None:
+    with pytest.raises(ModuleNotFoundError):
+        __import__("adapters.scenes")

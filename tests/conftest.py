@@ -1,0 +1,11 @@
+"""The suite imports LightRocks as installed (``lightrocks.…``), never the repository's
+folders as top-level packages: ``python -m pytest`` puts the working directory on
+``sys.path``, where ``runtime`` or ``adapters`` would import by accident."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:] = [entry for entry in sys.path if Path(entry or ".").resolve() != ROOT]
