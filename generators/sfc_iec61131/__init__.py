@@ -9,6 +9,7 @@ from lightrocks.generators.selection import is_action, selected
 from lightrocks.generators.sfc_iec61131.build import Unit, UnitBuilder
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.generators.sfc_iec61131.expressions import time_literal
+from lightrocks.generators.sfc_iec61131.frames import FRAME_FIELDS, FUNCTIONS
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.languages.lightrocks.typing import Typing
@@ -53,6 +54,8 @@ class SfcGenerator:
             text = environment.get_template("unit.st.jinja").render(
                 unit=unit,
                 interval=time_literal(int(interval) / 1000),
+                frames=FUNCTIONS,
+                frame_fields=FRAME_FIELDS,
             )
             problems = check_sfc(text)
             if problems:
