@@ -37,16 +37,16 @@ def _product() -> tuple[str, ...]:
 
 
 def _rotation(axis: str) -> Function:
-    first, second = [a for a in AXES if a != axis]
-    name = f"ROT_{axis.upper()}"
-    sign = ("-", "") if axis != "y" else ("", "-")
+    a, b = [other for other in AXES if other != axis]
+    f = f"ROT_{axis.upper()}"
+    upper, lower = ("-", "") if axis != "y" else ("", "-")
     return Function(
-        name,
+        f,
         (("angle", "REAL"),),
         (
-            f"{name}.{axis}{axis} := 1.0;",
-            f"{name}.{first}{first} := COS(angle); {name}.{first}{second} := {sign[0]}SIN(angle);",
-            f"{name}.{second}{first} := {sign[1]}SIN(angle); {name}.{second}{second} := COS(angle);",
+            f"{f}.{axis}{axis} := 1.0;",
+            f"{f}.{a}{a} := COS(angle); {f}.{a}{b} := {upper}SIN(angle);",
+            f"{f}.{b}{a} := {lower}SIN(angle); {f}.{b}{b} := COS(angle);",
         ),
     )
 
