@@ -36,15 +36,21 @@ def build_unit(top: Component, typing: Typing) -> Unit:
     return unit
 
 
+def interval_option(request: GenerationRequest) -> str:
+    """The task cycle (option ``interval_ms``, default 1) as a TIME literal."""
+    interval = request.options.get("interval_ms", "1")
+    if not interval.isdigit() or int(interval) == 0:
+        raise GenerationError(f"option interval_ms='{interval}' is not a whole number > 0")
+    return time_literal(int(interval) / 1000)
+
+
 class SfcGenerator:
     name = "sfc"
     description = "IEC 61131-3 textual SFC for PLCs (option interval_ms=1: the task cycle)"
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
         environment = template_environment(TEMPLATES, request.templates)
-        interval = request.options.get("interval_ms", "1")
-        if not interval.isdigit() or int(interval) == 0:
-            raise GenerationError(f"option interval_ms='{interval}' is not a whole number > 0")
+        interval = interval_option(request)
         typing = analysis(request.context).typing
         files: dict[str, str] = {}
         for top in selected(request):
@@ -53,7 +59,7 @@ class SfcGenerator:
             unit = build_unit(top, typing)
             text = environment.get_template("unit.st.jinja").render(
                 unit=unit,
-                interval=time_literal(int(interval) / 1000),
+                interval=interval,
                 frames=FUNCTIONS,
                 frame_fields=FRAME_FIELDS,
             )
