@@ -180,3 +180,12 @@ def test_nfkc_twins_get_different_identifiers():
     for twin in NFKC_TWINS:
         plain = unicodedata.normalize("NFKC", twin)
         assert identifier(twin) != identifier(plain)
+
+
+def test_ecore_exports_a_string_with_control_characters(tmp_path: Path):
+    text = 'package t;\n\nstatechart S {\n  parameters {\n    String s = "a\x01b\x1bc";\n  }\n\n  initial state A;\n}\n'  # noqa: E501
+    write_models(tmp_path, {"S": text})
+    done = cli("generate", "--target", "ecore", "t", "-o", "out", cwd=tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    xmi = (tmp_path / "out" / "t.S.xmi").read_text(encoding="utf-8")
+    assert 'value="a\\u0001b\\u001bc"' in xmi
