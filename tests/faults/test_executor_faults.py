@@ -259,3 +259,27 @@ def test_ctrl_c_on_the_command_line_exits_130_with_a_closed_trace(tmp_path, monk
     assert "interrupted" in capsys.readouterr().err
     assert holds == [1]
     assert trace_records(trace)[-1]["kind"] == "interrupted"
+
+
+class ClockFails(DryRunAdapter):
+    """A dry run whose clock raises from its ``after``-th reading on."""
+
+    def __init__(self, after: int) -> None:
+        super().__init__()
+        self.after, self.readings = after, 0
+
+    @property
+    def time(self) -> float:
+        self.readings += 1
+        if self.readings > self.after:
+            raise SystemExit("clock gone")
+        return self._time
+
+
+@pytest.mark.parametrize("after", [0, 1, 3, 6])
+def test_failing_clock_ends_the_run_with_closing_records(build, after):
+    cls = build({"Move": MOVE, "Skill": SKILL}, "Skill")
+    chart = within(lambda: cls().start(ClockFails(after)))
+    assert chart.finished and chart.outcome == "error"
+    assert chart.trace[-1]["kind"] == "finished" and chart.trace[-1]["outcome"] == "error"
+    assert "clock gone" in chart.fault.message
