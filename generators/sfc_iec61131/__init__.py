@@ -10,6 +10,8 @@ from lightrocks.generators.sfc_iec61131.build import Unit, UnitBuilder
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.generators.sfc_iec61131.expressions import time_literal
 from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.languages.lightrocks.model import Component
+from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
 TEMPLATES = Path(__file__).parent / "templates"
@@ -26,6 +28,13 @@ def prioritize(unit: Unit) -> None:
                 transition.priority = given[transition.source]
 
 
+def build_unit(top: Component, typing: Typing) -> Unit:
+    """The blocks of ``top``'s compilation unit, with their transitions prioritized."""
+    unit = UnitBuilder(top, typing).build()
+    prioritize(unit)
+    return unit
+
+
 class SfcGenerator:
     name = "sfc"
     description = "IEC 61131-3 textual SFC for PLCs (option interval_ms=1: the task cycle)"
@@ -40,8 +49,7 @@ class SfcGenerator:
         for top in selected(request):
             if is_action(top):
                 continue
-            unit = UnitBuilder(top, typing).build()
-            prioritize(unit)
+            unit = build_unit(top, typing)
             text = environment.get_template("unit.st.jinja").render(
                 unit=unit,
                 interval=time_literal(int(interval) / 1000),

@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from lightrocks.generators.sfc_iec61131.names import Namer
 from lightrocks.languages.domain.types import FRAME, DeviceT, Type
 from lightrocks.metamodel import ast
 
@@ -19,11 +18,6 @@ FUNCTIONS = {
     "rotZ": "ROT_Z",
     "transl": "TRANSL",
 }
-
-
-def field_name(name: str) -> str:
-    """The ST name of a structure field or object attribute (same rule everywhere)."""
-    return Namer().claim(name)
 
 
 def real(value: float) -> str:
@@ -71,6 +65,7 @@ class Scope:
     names: dict[str, str]
     infer: Callable[[ast.Expression], Type]
     sensor: Callable[[DeviceT, str], str]
+    field: Callable[[str], str]
 
     def compile(self, expression: ast.Expression) -> str:
         constant = literal(expression)
@@ -82,7 +77,7 @@ class Scope:
             case ast.Member(target=target, name=name):
                 owner = self.infer(target)
                 member = self.sensor(owner, name) if isinstance(owner, DeviceT) else None
-                return f"{self.compile(target)}.{member or field_name(name)}"
+                return f"{self.compile(target)}.{member or self.field(name)}"
             case ast.Index(target=target, index=index):
                 return f"{self.compile(target)}[{self.compile(index)}]"
             case ast.Call(function=ast.Name(name=function), arguments=arguments):

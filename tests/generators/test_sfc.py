@@ -30,7 +30,8 @@ def test_complete_compilation_unit(units: dict[str, str]) -> None:
     text = units["ScrewTask.st"]
     for part in (
         "TYPE",
-        "Wrench : STRUCT",
+        "Force3 : STRUCT",
+        "wrench : Wrench_2;",  # a variable keeps its name; the type gives way
         "FUNCTION_BLOCK LWR",
         "FUNCTION_BLOCK ScrewIn",
         "FUNCTION_BLOCK ScrewTask",
