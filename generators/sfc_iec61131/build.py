@@ -35,6 +35,12 @@ from lightrocks.metamodel.units import UnitError, lookup
 from lightrocks.workbench.generators import GenerationError
 
 DEFAULT_TIMEOUT = 30.0
+# The handshake of a device block, written by the integrator's driver (docs/generators.md).
+STATUS = {
+    "busy": "TRUE from accepting a command (after clearing done and error) until its flag falls",
+    "done": "TRUE once the accepted command has settled",
+    "error": "TRUE when the accepted command failed",
+}
 FRAME_FUNCTIONS = ("FRAME_MUL", "ROT_X", "ROT_Y", "ROT_Z", "TRANSL")
 
 
@@ -116,6 +122,7 @@ class Unit:
     configuration: str
     resource: str
     task: str
+    cell: dict[str, str] = field(default_factory=dict)  # device or object -> its global
 
 
 class UnitBuilder:
@@ -202,10 +209,10 @@ class UnitBuilder:
             variable = Variable(name, self.st_type(self.typing.types.resolve(loaded, sensor.type)))
             block.members[sensor.name] = variable.name
             block.outputs.append(variable)
-        for status in ("busy", "done", "error"):  # a sensor of that name is that output
+        for status, meaning in STATUS.items():  # a sensor of that name is that output
             if status not in block.members:
                 block.members[status] = names.claim(status)
-                block.outputs.append(Variable(block.members[status], "BOOL"))
+                block.outputs.append(Variable(block.members[status], "BOOL", comment=meaning))
         resets: list[str] = []
         for command in device.commands:
             flag = names.claim(command.name)
@@ -234,7 +241,11 @@ class UnitBuilder:
                 block.body += [f"IF NOT {flag} THEN", *resets, "END_IF;"]
                 resets = []
         running = " OR ".join(v[0] for v in block.commands.values()) or "FALSE"
-        block.body.append(f"{block.members['busy']} := {running};")
+        block.body += [
+            f"IF NOT ({running}) THEN",
+            f"  {block.members['busy']} := FALSE;",
+            "END_IF;",
+        ]
         return block
 
     # -- components ------------------------------------------------------------------------
@@ -272,6 +283,7 @@ class UnitBuilder:
             self.globals.claim(f"{self.top.name}_Cell"),
             self.globals.claim("Controller"),
             self.globals.claim("Cyclic"),
+            {name: v.name for name, v in self.cell_members.items()},
         )
 
 
@@ -432,7 +444,7 @@ class ComponentBuilder:
             condition = _conjunction(branch.condition)
             whole = _conjunction([condition, *(_negate(t) for t in taken)])
             taken.append(condition)
-            if not branch.statements and not branch.postcondition:
+            if not (branch.statements or branch.postcondition or branch.target == source):
                 self._go(source, branch.target, whole)
                 continue
             between = self._step(f"{source}_to_{branch.target}_do").name
@@ -686,11 +698,16 @@ class ComponentBuilder:
         exits = self._statements(
             (s for a in region.actions if a.kind == "exit" for s in a.statements), scope
         )
-        ends = [(c.name, self._guard(c.expression, scope) or "TRUE") for c in region.end_conditions]
-        ends.insert(0, ("error", f"{instance}.{self.unit.device_block(device).members['error']}"))
-        ends.append(
-            ("timeout", f"{step}.T >= {time_literal(self._timeout(action, device.device))}")
-        )
+        members = self.unit.device_block(device).members
+        # the device's outputs speak of this command only once it has seen it: busy
+        acknowledged = f"{instance}.{members['busy']}"
+        ends = [
+            (c.name, [acknowledged, self._guard(c.expression, scope)])
+            for c in region.end_conditions
+        ]
+        ends.insert(0, ("error", [acknowledged, f"{instance}.{members['error']}"]))
+        budget = time_literal(self._timeout(action, device.device))
+        ends.append(("timeout", [f"{step}.T >= {budget}"]))
         branches = []
         for outcome, condition in ends:
             settle = self._step(f"{step}_{outcome}").name
@@ -698,7 +715,7 @@ class ComponentBuilder:
             real = outcome not in ("error", "timeout")
             self._body(settle, "P1", stop + (store if real else []) + exits)
             self._branches(settle, self._react(node, outcome, [], []))
-            branches.append(Branch([condition], [], settle))
+            branches.append(Branch(condition, [], settle))
         return branches
 
     def _command(self, region: Region, scope: Scope):

@@ -131,20 +131,23 @@ def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
     ]
     emulate: list[str] = []
     calls = 0
-    for member in unit.globals:
+    variables = {v.name: v for v in unit.globals}
+    for name, global_name in unit.cell.items():
+        member = variables[global_name]
         if member.type not in devices:
             continue
         block = devices[member.type]
         device = f"{cell}__{member.name.upper()}"
         lines.append(f"extern {block.name.upper()} {device};")
         for command, (flag, _, result) in block.commands.items():
-            key = f"{member.name}.{command}"
+            key = f"{name}.{command}"
             script = scenario.commands.get(key, [])
             codes = [{None: 0, "error": 1, "timeout": 2}[s] for s in script] or [0]
             lines.append(f"static int script{calls}[] = {{{', '.join(map(str, codes))}}};")
             lines.append(f"static int count{calls}, prev{calls}, left{calls}, mode{calls};")
             get = f"{device}.{flag.upper()}.value"
             status = [f"{device}.{block.members[s].upper()}.value = 0;" for s in ("done", "error")]
+            status.append(f"{device}.{block.members['busy'].upper()}.value = 1;")
             if "goalReached" in block.members:
                 status.append(f"{device}.{block.members['goalReached'].upper()}.value = 0;")
             settle = [f"{device}.{block.members['done'].upper()}.value = 1;"]
@@ -161,15 +164,17 @@ def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
                 f"if ({get} && mode{calls} == 0 && left{calls} > 0 && --left{calls} == 0) {{",
                 *(f"  {s}" for s in settle),
                 "}",
+                f"if (!{get} && prev{calls}) {device}.{block.members['busy'].upper()}.value = 0;",
                 f"prev{calls} = {get};",
             ]
             calls += 1
     for key, value in scenario.sensors.items():
         instance, _, sensor = key.partition(".")
-        member = next(m for m in unit.globals if m.name == instance)
+        member = variables[unit.cell[instance]]
         block = devices[member.type]
         number = int(value) if isinstance(value, bool) else value
-        emulate.append(f"{cell}__{instance.upper()}.{block.members[sensor].upper()}.value = {number};")
+        target = f"{cell}__{member.name.upper()}.{block.members[sensor].upper()}"
+        emulate.append(f"{target}.value = {number};")
     program = f"{unit.resource.upper()}__{unit.instance.upper()}"
     start = unit.program.inputs[0].name.upper()
     event_inputs = {v.comment.removeprefix("event "): v.name for v in unit.program.inputs[1:]}
@@ -234,7 +239,9 @@ def _effects(block: Block, device: str, command: str, result: str) -> list[str]:
         effects.append(f"{device}.{member('holding').upper()}.value = {int(command == 'close')};")
     if command == "localize" and result:
         frame = f"{device}.{result.upper()}.value"
-        effects += [f"{frame}.{a} = 0;" for a in ("X", "Y", "Z", "XY", "XZ", "YX", "YZ", "ZX", "ZY")]
+        effects += [
+            f"{frame}.{a} = 0;" for a in ("X", "Y", "Z", "XY", "XZ", "YX", "YZ", "ZX", "ZY")
+        ]
         effects += [f"{frame}.{a} = 1;" for a in ("XX", "YY", "ZZ")]
     return effects
 
@@ -245,9 +252,7 @@ def sfc_trace(exe: Path, unit: Unit) -> list[Event]:
         [str(exe)], capture_output=True, text=True, timeout=300, check=True
     ).stdout
     tree = _tree(unit)
-    by_cycle: dict[int, list[tuple[int, Event]]] = {}
-    for line in output.split():
-        pass
+    by_cycle: dict[int, list[tuple[int, Event]]] = {-1: [(0, ("enter", unit.top.name))]}
     for row in output.splitlines():
         cycle, b, i = map(int, row.split())
         _, path, block = tree[b]
