@@ -189,3 +189,51 @@ def test_ecore_exports_a_string_with_control_characters(tmp_path: Path):
     assert done.returncode == 0, done.stdout + done.stderr
     xmi = (tmp_path / "out" / "t.S.xmi").read_text(encoding="utf-8")
     assert 'value="a\\u0001b\\u001bc"' in xmi
+
+
+@pytest.mark.parametrize("name", ["path", "parent", "ｐａｒｅｎｔ"])
+def test_run_with_a_parameter_named_like_the_runtime_ends(tmp_path: Path, name):
+    write_models(tmp_path, {"Counter": COUNTER.replace("NAME", name)})
+    model = str(tmp_path / "t" / "Counter.lr")
+    done = cli("run", model, "--events", "go", cwd=tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "outcome: B" in done.stdout
+
+
+IDLE_SKILL = """package t;
+
+import t.Cell;
+
+<<skill>> statechart Sk {
+  parameters {
+    Integer PARAMETER = 0;
+  }
+
+  start condition go;
+  end condition END;
+
+  <<import="Move">> state M;
+
+  go -> M;
+  M -> END reached;
+}
+"""
+MOVE = """package t;
+
+import t.Cell;
+
+<<action>> statechart Move {
+  do / arm.move(x = 1 mm);
+
+  end condition reached [arm.goalReached];
+}
+"""
+
+
+@pytest.mark.parametrize(("parameter", "end"), [("Idle", "done"), ("k", "Idle")])
+def test_sfc_target_takes_a_skill_parameter_or_end_condition_named_idle(tmp_path, parameter, end):
+    skill = IDLE_SKILL.replace("PARAMETER", parameter).replace("END", end)
+    write_models(tmp_path, {"Sk": skill, "Move": MOVE})
+    done = cli("generate", "--target", "sfc", "t", "-o", "out", cwd=tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert (tmp_path / "out" / "Sk.st").is_file()
