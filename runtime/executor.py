@@ -3,7 +3,8 @@
 A step starts with ``start()`` or ``send(event)`` and ends when every active state rests:
 in a simple state waiting for an event, or with the top state finished. Entering an action
 state runs its device command to its outcome inside the step (the adapter blocks), so a
-LightRocks task runs to its end within ``start()``.
+LightRocks task runs to its end within ``start()``. No fault escapes a step: each becomes
+one ``error`` outcome, and a run always ends with a ``finished`` or ``interrupted`` record.
 """
 
 from __future__ import annotations
@@ -77,10 +78,22 @@ class Executor:
 
     @property
     def time(self) -> float:
-        return self.adapter.time if self.adapter is not None else 0.0
+        return self._ask("time", lambda: self.adapter.time) if self.adapter is not None else 0.0
 
     def snapshot(self) -> Snapshot:
-        return self.adapter.snapshot() if self.adapter is not None else self._idle
+        if self.adapter is None:
+            return self._idle
+        return self._ask("snapshot()", self.adapter.snapshot)
+
+    @staticmethod
+    def _ask(what: str, read: Any) -> Any:
+        """Read the adapter; a failure is an adapter fault, not one of the model's code."""
+        try:
+            return read()
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:
+            raise _Fault(f"adapter fault in {what}: {exc!r}", "") from None
 
     def _write(self, kind: str, **fields: Any) -> None:
         self._clock = self.time
@@ -130,7 +143,9 @@ class Executor:
                     if isinstance(done, Preemption):
                         done = self._guarded(partial(self._preempt, done))
                     else:
-                        done = self._guarded(partial(self._complete, *done))
+                        state, outcome = done
+                        complete = partial(self._complete, state, outcome)
+                        done = self._guarded(complete, handling_error=outcome == ERROR)
                 done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
                     event = self.events.popleft()
@@ -144,13 +159,10 @@ class Executor:
         finally:
             self._busy = False
 
-    def _guarded(self, step: Any) -> Done:
+    def _guarded(self, step: Any, handling_error: bool = False) -> Done:
         """Run a part of a step. Whatever it raises (but Ctrl-C) becomes the outcome ``error``
         of the innermost active state, once; a fault while an ``error`` is being handled, or
         after the top state was left, ends the run with ``error`` at once."""
-        completing_error = (
-            isinstance(step, partial) and step.func == self._complete and step.args[1] == ERROR
-        )
         try:
             return step()
         except KeyboardInterrupt:
@@ -160,7 +172,7 @@ class Executor:
                 (exc.message, exc.location) if isinstance(exc, _Fault) else (describe(exc), "")
             )
             active = self.active()
-            if completing_error or not active:
+            if handling_error or not active:
                 self._abort(message, location)
                 return None
             state = active[-1]
