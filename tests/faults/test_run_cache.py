@@ -5,6 +5,8 @@ is rebuilt, never imported."""
 from __future__ import annotations
 
 import sys
+import threading
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
@@ -13,7 +15,7 @@ from lightrocks.workbench.app import cache
 from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
-from .conftest import cli, write_models
+from .conftest import DEADLINE, cli, within, write_models
 
 CHART = """package t;
 
@@ -140,3 +142,23 @@ def test_leftover_staging_folder_and_partial_entry_do_not_poison_the_cache(tmp_p
         if path != entry / "__init__.py":
             path.unlink()
     assert runs(load(model, root))
+
+
+def test_processes_building_the_same_entry_at_once_all_get_a_good_one(tmp_path: Path):
+    root, builders = tmp_path / "cache", 4
+    together = threading.Barrier(builders)
+
+    def generate() -> dict[str, str]:
+        together.wait(DEADLINE)  # everyone has found the entry missing
+        return {"__init__.py": "", "t/Gate.py": "X = 1\n"}
+
+    found = within(
+        lambda: list(
+            ThreadPoolExecutor(builders).map(
+                lambda _: cache.entry(root, "k" * 32, generate), range(builders)
+            )
+        )
+    )
+    assert found == [root / ("k" * 32)] * builders
+    assert cache.verified(root / ("k" * 32))
+    assert [p.name for p in root.iterdir()] == ["k" * 32]  # no staging folder left

@@ -19,7 +19,7 @@ from collections.abc import Callable, Iterable, Mapping
 from importlib.metadata import version
 from pathlib import Path
 
-from lightrocks.workbench.generators import GenerationError, write_all
+from lightrocks.workbench.generators import GenerationError
 
 MANIFEST = "manifest.json"
 
@@ -49,21 +49,43 @@ def cache_key(generator: str, inputs: Iterable[tuple[str, bytes]]) -> str:
 
 
 def entry(root: Path, key: str, generate: Callable[[], Mapping[str, str]]) -> Path:
-    """The verified folder of ``key``, generated and written atomically when missing or
-    corrupt. Two processes that build the same entry at once both end with a good one."""
+    """The verified folder of ``key``, generated and renamed into place when missing or
+    corrupt. Processes building the same entry at once each stage their own folder; the
+    first rename wins and the others use its entry."""
     folder = root / key
     if verified(folder):
         return folder
     files = dict(generate())
-    manifest = {path: _digest(text.encode("utf-8")) for path, text in files.items()}
-    root.mkdir(mode=0o700, parents=True, exist_ok=True)
-    if folder.exists() or folder.is_symlink():
-        _discard(folder)
+    files[MANIFEST] = json.dumps(
+        {path: _digest(text.encode("utf-8")) for path, text in files.items()},
+        indent=1,
+        sort_keys=True,
+    )
     try:
-        write_all(folder, {**files, MANIFEST: json.dumps(manifest, indent=1, sort_keys=True)})
-    except GenerationError:
-        if not verified(folder):  # not another process's entry that won the rename
-            raise
+        return _publish(root, key, files)
+    except OSError as error:
+        raise GenerationError(f"cannot write the run cache {root}: {error.strerror}") from None
+
+
+def _publish(root: Path, key: str, files: Mapping[str, str]) -> Path:
+    """Write the files into a fresh staging folder and rename it to the entry in one step."""
+    folder = root / key
+    root.mkdir(mode=0o700, parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{key}.", dir=root))  # private: mode 0700
+    try:
+        for relative, text in files.items():
+            path = staging / relative
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(text, encoding="utf-8", newline="\n")
+        if (folder.exists() or folder.is_symlink()) and not verified(folder):
+            _discard(folder)
+        try:
+            os.rename(staging, folder)
+        except OSError:
+            if not verified(folder):  # not an entry another process renamed in first
+                raise
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
     return folder
 
 
