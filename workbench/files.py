@@ -1,15 +1,16 @@
 """Writing files so that a failed or killed run leaves nothing half-written behind.
 
-A single file is written beside its target and renamed over it. A folder of generated files
-is built whole in a fresh sibling folder (a copy of the old one plus the new files) and
-swapped in by renames recorded in a journal beside it; a run killed during the swap leaves
-the journal, and the next write to that folder completes the swap before anything else.
+A single file is written beside its target and renamed over it. A new folder of generated
+files is built whole beside where it goes and renamed into place. Into an existing folder,
+the files are staged inside it first; a journal listing them is written before the first
+one is moved in, and removed after the last: a run killed in between leaves the journal, and
+the next write to that folder moves the remaining files before anything else (a run killed
+before the journal leaves only its staging folder, which the next write deletes).
 """
 
 from __future__ import annotations
 
 import contextlib
-import errno
 import glob
 import json
 import os
@@ -18,6 +19,9 @@ import stat
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
+
+STAGING = ".lightrocks-staging-"
+JOURNAL = ".lightrocks-journal"
 
 
 def write_atomic(path: Path, text: str) -> None:
@@ -40,71 +44,65 @@ def write_atomic(path: Path, text: str) -> None:
 
 
 def write_tree(output: Path, files: Mapping[str, str | bytes]) -> list[Path]:
-    """Write every file below the folder ``output`` (relative path -> content), or none:
-    files already there and not named in ``files`` stay as they were."""
+    """Write every file below the folder ``output`` (relative path -> content), or none;
+    files already there and not named in ``files`` stay as they are."""
     recover(output)
-    if output.is_dir() and not os.access(output, os.W_OK | os.X_OK):  # read-only stays so
-        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(output))
-    output.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.new-", dir=output.parent))
+    created = not output.exists()
+    if created:
+        output.parent.mkdir(parents=True, exist_ok=True)
+    if created:  # beside it, named after it, so that the next write finds a leftover
+        staging = Path(tempfile.mkdtemp(prefix=_sibling(output), dir=output.parent))
+    else:
+        staging = Path(tempfile.mkdtemp(prefix=STAGING, dir=output))
     try:
-        if output.is_dir():
-            shutil.copytree(output, staging, symlinks=True, dirs_exist_ok=True)
-            shutil.copymode(output, staging)
-        else:
-            staging.chmod(0o777 & ~_umask())
         for relative, content in sorted(files.items()):
             staged = staging / relative
             staged.parent.mkdir(parents=True, exist_ok=True)
-            if staged.is_symlink():  # a link copied from the old folder: replace, not follow
-                staged.unlink()
             if isinstance(content, bytes):
                 staged.write_bytes(content)
             else:
                 staged.write_text(content, encoding="utf-8", newline="\n")
-        if output.exists():
-            _swap(output, staging)
-        else:
+        if created:
+            staging.chmod(0o777 & ~_umask())
             os.rename(staging, output)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
+        else:
+            write_atomic(output / JOURNAL, json.dumps([staging.name, sorted(files)]))
+            _move_in(output, staging, sorted(files))
+            (output / JOURNAL).unlink()
+    finally:  # once journaled, the staged files belong to the next write's recovery
+        if created or not (output / JOURNAL).exists():
+            shutil.rmtree(staging, ignore_errors=True)
     return [output / relative for relative in sorted(files)]
 
 
 def recover(output: Path) -> None:
-    """Complete a swap of ``output`` that a killed run left in its journal; drop folders a
-    killed run was still building."""
-    journal = _journal(output)
+    """Finish the moves a killed write into ``output`` recorded in its journal; delete
+    staging folders that no journal names."""
+    for leftover in output.parent.glob(glob.escape(_sibling(output)) + "*"):
+        shutil.rmtree(leftover, ignore_errors=True)
+    if not output.is_dir():
+        return
+    journal = output / JOURNAL
     if journal.exists():
-        with contextlib.suppress(ValueError, OSError, KeyError, TypeError):
-            names = json.loads(journal.read_text(encoding="utf-8"))
-            new, old = output.parent / names["new"], output.parent / names["old"]
-            if new.is_dir():
-                if output.exists() and not old.exists():
-                    os.rename(output, old)
-                os.rename(new, output)
-        journal.unlink(missing_ok=True)
-    for kind in ("new", "old"):
-        pattern = f".{glob.escape(output.name)}.{kind}-*"
-        for leftover in output.parent.glob(pattern):
-            shutil.rmtree(leftover, ignore_errors=True)
+        with contextlib.suppress(ValueError, TypeError):
+            staging_name, relatives = json.loads(journal.read_text(encoding="utf-8"))
+            staging = output / Path(staging_name).name
+            if staging.is_dir():
+                _move_in(output, staging, [r for r in relatives if (staging / r).exists()])
+        journal.unlink()
+    for leftover in output.glob(STAGING + "*"):
+        shutil.rmtree(leftover, ignore_errors=True)
 
 
-def _swap(output: Path, staging: Path) -> None:
-    """Old folder aside, new folder in: two renames, journaled so that a kill between them
-    is completed by :func:`recover`."""
-    old = staging.with_name(staging.name.replace(".new-", ".old-", 1))
-    journal = _journal(output)
-    write_atomic(journal, json.dumps({"new": staging.name, "old": old.name}))
-    os.rename(output, old)
-    os.rename(staging, output)
-    journal.unlink()
-    shutil.rmtree(old, ignore_errors=True)
+def _sibling(output: Path) -> str:
+    return f".{output.name}{STAGING}"
 
 
-def _journal(output: Path) -> Path:
-    return output.with_name(f".{output.name}.lightrocks-swap")
+def _move_in(output: Path, staging: Path, relatives: list[str]) -> None:
+    for relative in relatives:
+        target = output / relative
+        target.parent.mkdir(parents=True, exist_ok=True)
+        os.replace(staging / relative, target)
 
 
 def _umask() -> int:

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from lightrocks.workbench.app.cli import main
-from lightrocks.workbench.files import recover
+from lightrocks.workbench.files import JOURNAL, STAGING, recover
 
 from .conftest import DEADLINE
 
@@ -38,7 +38,7 @@ def patch(owner, name, when):
 
     setattr(owner, name, killing)
 
-owner = {"write_text": Path, "rename": os}[sys.argv[1]]
+owner = {"write_text": Path, "replace": os}[sys.argv[1]]
 patch(owner, sys.argv[1], int(sys.argv[2]))
 sys.exit(main(sys.argv[3:]))
 """
@@ -57,10 +57,11 @@ def generate_killed(out: Path, models: Path, operation: str, nth: int) -> None:
 
 
 def contents(folder: Path) -> dict[str, bytes]:
+    """The files below ``folder``, without a staging folder a killed run left inside."""
     return {
         p.relative_to(folder).as_posix(): p.read_bytes()
         for p in sorted(folder.rglob("*"))
-        if p.is_file()
+        if p.is_file() and not p.relative_to(folder).parts[0].startswith(STAGING)
     }
 
 
@@ -82,7 +83,7 @@ def test_kill_while_writing_leaves_the_old_output_untouched(tmp_path, expected, 
     assert contents(out) == expected["old"]
     generate(out, NEW)
     assert contents(out) == expected["new"]
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]  # no staging folder left
+    assert not list(out.glob(".lightrocks-*"))  # no staging folder left
 
 
 def test_kill_while_writing_a_new_output_creates_nothing(tmp_path):
@@ -93,11 +94,12 @@ def test_kill_while_writing_a_new_output_creates_nothing(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_kill_between_the_swap_renames_is_completed_by_the_next_write(tmp_path, expected):
+@pytest.mark.parametrize("nth", [2, 6, 15])
+def test_kill_while_moving_in_is_completed_by_the_next_write(tmp_path, expected, nth):
     out = tmp_path / "out"
     generate(out, OLD)
-    generate_killed(out, NEW, "rename", 2)  # killed once the old folder is set aside
-    assert not out.exists()
+    generate_killed(out, NEW, "replace", nth)  # the 1st replace writes the journal
+    assert (out / JOURNAL).exists()
     recover(out)
     assert contents(out) == expected["new"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
