@@ -88,10 +88,17 @@ def recover(output: Path) -> None:
             staging_name, relatives = json.loads(journal.read_text(encoding="utf-8"))
             staging = output / Path(staging_name).name
             if staging.is_dir():
-                _move_in(output, staging, [r for r in relatives if (staging / r).exists()])
+                _move_in(output, staging, [r for r in relatives if _staged(staging, r)])
         journal.unlink()
     for leftover in output.glob(STAGING + "*"):
         shutil.rmtree(leftover, ignore_errors=True)
+
+
+def _staged(staging: Path, relative: object) -> bool:
+    """A journal entry that names a staged file below the folder (nothing outside it)."""
+    if not isinstance(relative, str) or Path(relative).is_absolute():
+        return False
+    return ".." not in Path(relative).parts and (staging / relative).is_file()
 
 
 def _sibling(output: Path) -> str:

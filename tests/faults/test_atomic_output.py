@@ -129,3 +129,14 @@ def test_fmt_writes_through_a_symlink(tmp_path):
     assert "statechart Messy {" in target.read_text()
     assert stat.S_IMODE(target.stat().st_mode) == 0o604
     assert sorted(p.name for p in target.parent.iterdir()) == ["Messy.lr"]
+
+
+def test_a_forged_journal_moves_nothing_outside_the_folder(tmp_path):
+    out = tmp_path / "out"
+    staging = out / f"{STAGING}forged"
+    (staging / "sub").mkdir(parents=True)
+    (staging / "sub" / "x.py").write_text("planted")
+    (out / JOURNAL).write_text('["../../elsewhere", ["../sub/x.py", "/etc/x", 3]]')
+    recover(out)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+    assert list(out.iterdir()) == []
