@@ -28,7 +28,7 @@ from lightrocks.languages.domain.types import (
     Type,
     VectorT,
 )
-from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
+from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, Component, Region, StateInfo
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup
@@ -440,7 +440,12 @@ class ComponentBuilder:
         Statements run in a step of their own between source and target, so that they
         finish before the target's entry and so that a postcondition reads their effect."""
         taken: list[str] = []
+        covered: list[set[str]] = []
         for branch in branches:
+            needs = {c for c in branch.condition if c and c != "TRUE"}
+            if any(earlier <= needs for earlier in covered):
+                continue  # an earlier branch always wins: this one never fires
+            covered.append(needs)
             condition = _conjunction(branch.condition)
             whole = _conjunction([condition, *(_negate(t) for t in taken)])
             taken.append(condition)
@@ -625,9 +630,7 @@ class ComponentBuilder:
         """Transitions on external events: the innermost state first, declaration order."""
         branches = []
         for owner in node.chain():
-            outcomes = set(owner.info.outcomes or ()) | (
-                {"error", "timeout"} if owner.info.outcomes is not None else set()
-            )
+            outcomes = {*(owner.info.outcomes or ()), *BUILTIN_OUTCOMES}  # never events
             for transition in owner.region.transitions:
                 if transition.source != owner.name or not transition.stimulus:
                     continue

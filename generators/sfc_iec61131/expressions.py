@@ -20,6 +20,23 @@ FUNCTIONS = {
 }
 
 
+ESCAPES = {"$": "$$", "'": "$'", "\n": "$N", "\r": "$R", "\t": "$T", "\f": "$P"}
+
+
+def string_literal(value: str) -> str:
+    """A single-byte IEC 61131-3 STRING: ``$`` escapes, ``$hh`` for any other character
+    outside printable ASCII (as UTF-8 bytes)."""
+    parts = []
+    for character in value:
+        if character in ESCAPES:
+            parts.append(ESCAPES[character])
+        elif " " <= character <= "~":
+            parts.append(character)
+        else:
+            parts.append("".join(f"${byte:02X}" for byte in character.encode("utf-8")))
+    return "'" + "".join(parts) + "'"
+
+
 def real(value: float) -> str:
     """An ST REAL literal: always with a point, exponent as ``E``."""
     text = repr(float(value))
@@ -48,7 +65,7 @@ def literal(expression: ast.Expression) -> str | None:
         case ast.BooleanLiteral(value=value):
             return "TRUE" if value else "FALSE"
         case ast.StringLiteral(value=value):
-            return "'" + value.replace("$", "$$").replace("'", "$'") + "'"
+            return string_literal(value)
         case ast.Unary(operator="-", operand=operand):
             inner = literal(operand)
             return None if inner is None else (inner[1:] if inner[0] == "-" else f"-{inner}")

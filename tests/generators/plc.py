@@ -87,12 +87,17 @@ def python_trace(scenario: Scenario, search: list[Path]) -> list[Event]:
 
 
 def comparable(events: list[Event], unit: Unit) -> list[Event]:
-    """The events the compiled program can show: entered leaves and instances, outcomes of
-    actions and of components."""
-    known = {path for _, path, _ in _tree(unit)} | {
-        f"{path}/{state}" for _, path, block in _tree(unit) for state, _ in block.states.values()
+    """The events the compiled program can show: entered leaves and instances; outcomes of
+    actions (settle steps) and of components (exit steps)."""
+    tree = _tree(unit)
+    instances = {path for _, path, _ in tree}
+    entered = instances | {
+        f"{path}/{state}" for _, path, b in tree for state, outcome in b.states.values() if state
     }
-    return [e for e in events if e[1] in known]
+    ended = instances | {
+        f"{path}/{state}" for _, path, b in tree for state, outcome in b.states.values() if outcome
+    }
+    return [e for e in events if e[1] in (entered if e[0] == "enter" else ended)]
 
 
 def _tree(unit: Unit) -> list[tuple[str, str, Block]]:

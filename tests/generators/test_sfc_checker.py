@@ -50,6 +50,8 @@ BROKEN = {
     "simultaneous": ("FROM (Grip, Lift) TO Done", "FROM Grip TO Done"),
     "type-name": ("load : Wrench;", "wrench : Wrench;"),
     "macro-name": ("STEP Grip :", "STEP Force :"),
+    "empty-body": ("END_TYPE\n", "END_TYPE\nFUNCTION_BLOCK Nothing\nEND_FUNCTION_BLOCK\n"),
+    "string-literal": ("finished := FALSE; END_ACTION", "finished := 'a\nb' = 'c'; END_ACTION"),
 }
 
 
