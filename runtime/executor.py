@@ -235,6 +235,8 @@ class Executor:
             parent = state.parent
             if parent is None:
                 continue
+            if event in _completions(state):
+                continue
             for transition in parent.transitions_from(state.name):
                 if transition.stimulus == event and (
                     transition.guard is None or transition.guard(parent, s)
@@ -359,6 +361,13 @@ class Executor:
             if violated is not None:
                 return violated
         return None
+
+
+def _completions(state: State) -> tuple[str, ...]:
+    """Outcomes ``state`` ends with: they fire only on completion, never as external events."""
+    if isinstance(state, Action | Composite):
+        return (*state.OUTCOMES, ERROR, TIMEOUT, PREEMPTED)
+    return (ERROR,)  # a violated invariant ends even a simple state
 
 
 def _matches(transition: Transition, outcome: str, child: State) -> bool:

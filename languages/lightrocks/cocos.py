@@ -142,7 +142,9 @@ def transition_ends_resolve(context: object) -> Iterator[Finding]:
 
 @coco("LR0111", Severity.WARNING, "stimuli leaving a child name one of its outcomes")
 def stimulus_is_outcome(context: object) -> Iterator[Finding]:
-    for _, region in _own_regions(analysis(context)):
+    for component, region in _own_regions(analysis(context)):
+        if component.layer is None:
+            continue  # a plain chart leaves composites by events as a matter of course
         for transition in region.transitions:
             source = region.states.get(transition.source)
             if source is None or source.outcomes is None or not transition.stimulus:
@@ -367,16 +369,46 @@ def deterministic(context: object) -> Iterator[Finding]:
             if transition.guard is not None:
                 continue
             key = (transition.source, transition.stimulus)
-            earlier = seen.get(key) or seen.get((transition.source, ""))
+            outcome = _is_outcome(region, transition)
+            earlier = seen.get(key) or (seen.get((transition.source, "")) if outcome else None)
             if earlier is not None:
+                kind = "outcome" if outcome else "event" if transition.stimulus else "completion"
                 yield (
                     transition.position,
                     f"never fires: the transition at {earlier.position} takes the same "
-                    f"{'outcome' if transition.stimulus else 'completion'} first",
+                    f"{kind} first",
                     "",
                 )
             else:
                 seen[key] = transition
+
+
+def _is_outcome(region: Region, transition: ast.Transition) -> bool:
+    """The stimulus names a declared outcome of the source; otherwise it is an event."""
+    source = region.states.get(transition.source)
+    outcomes = source.outcomes if source is not None else None
+    return bool(outcomes) and transition.stimulus in outcomes
+
+
+@coco("LR0214", Severity.ERROR, "a transition without stimulus leaves a state that completes")
+def completion_needs_outcome(context: object) -> Iterator[Finding]:
+    for _, region in _own_regions(analysis(context)):
+        for transition in region.transitions:
+            source = region.states.get(transition.source)
+            if (
+                transition.stimulus
+                or source is None
+                or source.state.is_final
+                or source.outcomes is not None
+                or any(s.name == "import" for s in source.state.stereotypes)
+            ):
+                continue
+            yield (
+                transition.position,
+                f"never fires: '{source.name}' has no final state or end condition, "
+                "so it never completes",
+                "name the event that leaves it",
+            )
 
 
 @coco("LR0212", Severity.WARNING, "stereotypes are known")
@@ -421,6 +453,7 @@ COCOS = (
     deterministic,
     known_stereotypes,
     no_transition_into_start,
+    completion_needs_outcome,
     call_signature,
     type_mismatch,
     not_boolean,

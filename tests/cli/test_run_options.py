@@ -207,3 +207,15 @@ def test_screw_task_in_mujoco_reports_the_screw_depth(capsys: pytest.CaptureFixt
     assert depth is not None, out
     assert float(depth.group(1)) == pytest.approx(12.0, abs=0.6)
     assert re.search(r"screw bottomed\W+yes", out)
+
+
+def test_plain_chart_without_final_state_resting_after_its_events_succeeds(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "Door.lr").write_text(
+        "statechart Door {\n  initial state Shut;\n  state Open;\n"
+        "  Shut -> Open open;\n  Open -> Shut close;\n}\n"
+    )
+    status, out, _ = run(capsys, str(tmp_path / "Door.lr"), "--events", "open")
+    assert status == 0
+    assert "active: Door / Open" in out

@@ -392,6 +392,13 @@ CASES: list[Case] = [
         bad={"skills/Pick.lr": skill(PICK_BODY + "  Reach -> @@go error;\n")},
         message="'go' is a start condition: it can only be a source",
     ),
+    Case(
+        "LR0214",
+        ok={"misc/Lone.lr": LONE},
+        bad={"misc/Lone.lr": replace(LONE, "  A -> B tick;", "  A -> B tick;\n  @@A -> B;")},
+        message="never fires: 'A' has no final state or end condition",
+        hint="name the event that leaves it",
+    ),
     # -- typing ------------------------------------------------------------------------------
     Case(
         "LR0301",

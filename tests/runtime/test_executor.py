@@ -221,3 +221,34 @@ def test_python_error_in_a_guard_becomes_error_not_a_crash(build):
     chart.send("go")
     assert chart.finished and chart.outcome == "error"
     assert "ZeroDivisionError in model code" in chart.fault.message
+
+
+OUTCOME_AS_EVENT = """package t;
+
+statechart Q {
+  initial state Idle;
+  state Job {
+    end condition out;
+    initial state Load;
+    final state Ok;
+    Load -> Ok load;
+    Load -> out bail;
+  }
+  state Other;
+
+  Idle -> Job go;
+  Job -> Idle Ok;
+  Job -> Other out;
+  Other -> Idle back;
+}
+"""
+
+
+def test_an_outcome_is_never_taken_as_an_external_event(build):
+    chart = build({"Q": OUTCOME_AS_EVENT}, "Q")().start()
+    chart.send("go")
+    assert not chart.send("Ok")
+    assert not chart.send("out")
+    assert chart.active_configuration == ("Q", "Job", "Load")
+    assert chart.send("load")
+    assert chart.active_configuration == ("Q", "Idle")
