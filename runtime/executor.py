@@ -3,12 +3,14 @@
 A step starts with ``start()`` or ``send(event)`` and ends when every active state rests:
 in a simple state waiting for an event, or with the top state finished. Entering an action
 state runs its device command to its outcome inside the step (the adapter blocks), so a
-LightRocks task runs to its end within ``start()``.
+LightRocks task runs to its end within ``start()``. No fault escapes a step: each becomes
+one ``error`` outcome, and a run always ends with a ``finished`` or ``interrupted`` record.
 """
 
 from __future__ import annotations
 
 from collections import deque
+from contextlib import suppress
 from dataclasses import dataclass, field
 from functools import partial
 from types import SimpleNamespace
@@ -19,8 +21,21 @@ from lightrocks.runtime.environment import Environment, SceneObject, object_name
 from lightrocks.runtime.states import Action, Composite, State, Transition
 from lightrocks.runtime.trace import Trace, to_json
 
-ERROR, PREEMPTED = "error", "preempted"
+ERROR, PREEMPTED, INTERRUPTED = "error", "preempted", "interrupted"
 EVENT_STOP = "@event"
+
+
+class _Fault(Exception):
+    """A fault already described (message and model location) on its way to ``_guarded``."""
+
+    def __init__(self, message: str, location: str) -> None:
+        super().__init__(message)
+        self.message, self.location = message, location
+
+
+def describe(exc: BaseException) -> str:
+    """What a Python error in model code, an adapter or a sensor read says about itself."""
+    return f"{type(exc).__name__} in model code: {exc}"
 
 
 @dataclass
@@ -56,19 +71,33 @@ class Executor:
         self.outcome: str | None = None
         self.events: deque[str] = deque()
         self._busy = False
+        self._clock = 0.0
         self._idle = SimpleNamespace(time=0.0)
 
     # -- clock and sensors ----------------------------------------------------------------
 
     @property
     def time(self) -> float:
-        return self.adapter.time if self.adapter is not None else 0.0
+        return self._ask("time", lambda: self.adapter.time) if self.adapter is not None else 0.0
 
     def snapshot(self) -> Snapshot:
-        return self.adapter.snapshot() if self.adapter is not None else self._idle
+        if self.adapter is None:
+            return self._idle
+        return self._ask("snapshot()", self.adapter.snapshot)
+
+    @staticmethod
+    def _ask(what: str, read: Any) -> Any:
+        """Read the adapter; a failure is an adapter fault, not one of the model's code."""
+        try:
+            return read()
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:
+            raise _Fault(f"adapter fault in {what}: {exc!r}", "") from None
 
     def _write(self, kind: str, **fields: Any) -> None:
-        self.trace.write(self.time, kind, **fields)
+        self._clock = self.time
+        self.trace.write(self._clock, kind, **fields)
 
     # -- public steps ---------------------------------------------------------------------
 
@@ -114,7 +143,9 @@ class Executor:
                     if isinstance(done, Preemption):
                         done = self._guarded(partial(self._preempt, done))
                     else:
-                        done = self._guarded(partial(self._complete, *done))
+                        state, outcome = done
+                        complete = partial(self._complete, state, outcome)
+                        done = self._guarded(complete, handling_error=outcome == ERROR)
                 done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
                     event = self.events.popleft()
@@ -122,17 +153,58 @@ class Executor:
                     done = self._guarded(partial(self._dispatch_now, event))
                 if done is None:
                     return
+        except KeyboardInterrupt:
+            self._interrupt()
+            raise
         finally:
             self._busy = False
 
-    def _guarded(self, step: Any) -> Done:
-        """Run a step of model code; a Python error in it becomes the outcome ``error``."""
+    def _guarded(self, step: Any, handling_error: bool = False) -> Done:
+        """Run a part of a step. Whatever it raises (but Ctrl-C) becomes the outcome ``error``
+        of the innermost active state, once; a fault while an ``error`` is being handled, or
+        after the top state was left, ends the run with ``error`` at once."""
         try:
             return step()
-        except Exception as exc:
-            state = self.active()[-1] if self.active() else self.top
-            message = f"{type(exc).__name__} in model code: {exc}"
-            return self._error(state, message, state.LOCATION)
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # any fault of model or adapter code
+            message, location = (
+                (exc.message, exc.location) if isinstance(exc, _Fault) else (describe(exc), "")
+            )
+            active = self.active()
+            if handling_error or not active:
+                self._abort(message, location)
+                return None
+            state = active[-1]
+            return self._error(state, message, location or state.LOCATION)
+
+    def _abort(self, message: str, location: str) -> None:
+        """End the run with ``error`` now: no exit action runs, the arm holds, the trace ends
+        with ``finished``. Safe against a trace or a clock that fails as well."""
+        origin = [state.path for state in reversed(self.active())] or [self.top.path]
+        self.fault = Fault(message, location, origin)
+        self.finished, self.outcome = True, ERROR
+        self._hold()
+        self._record("error", state=origin[0], message=message, location=location)
+        self._record("finished", outcome=ERROR)
+
+    def _interrupt(self) -> None:
+        """Ctrl-C: the arm holds and the trace ends with an ``interrupted`` record."""
+        active = [state.path for state in self.active()]
+        self.finished, self.outcome = True, INTERRUPTED
+        self._hold()
+        self._record(INTERRUPTED, active=active)
+
+    def _record(self, kind: str, **fields: Any) -> None:
+        """Write a closing record even when the adapter's clock fails (last known time)."""
+        try:
+            time = self.time
+        except KeyboardInterrupt:
+            raise
+        except BaseException:  # the run is ending; the record matters more
+            time = self._clock
+        with suppress(Exception):  # nothing is left to report a failing trace to
+            self.trace.write(time, kind, **fields)
 
     def _enter(self, state: State, s: Snapshot) -> Done:
         """Enter ``state`` and descend until something rests or completes."""
@@ -194,12 +266,13 @@ class Executor:
             fields["origin"] = list(self.fault.origin)
         self._write("outcome", **fields)
         s = self.snapshot()
-        self._exit(state, s)
         parent = state.parent
         if parent is None:
             self.finished, self.outcome = True, outcome
+            self._exit(state, s)
             self._write("finished", outcome=outcome)
             return None
+        self._exit(state, s)
         for transition in parent.transitions_from(state.name):
             if _matches(transition, outcome, state) and (
                 transition.guard is None or transition.guard(parent, s)
@@ -217,14 +290,16 @@ class Executor:
         """Leave ``state`` and its active descendants, innermost first."""
         if isinstance(state, Composite) and state.current is not None:
             self._exit(state.current, s)
-        state.on_exit(s)
-        self._write("exit", state=state.path)
-        if state.parent is not None:
-            state.parent.current = None
+        try:
+            state.on_exit(s)
+        finally:  # left even when its exit action fails: the error belongs to the parent
+            self._write("exit", state=state.path)
+            if state.parent is not None:
+                state.parent.current = None
 
     def _error(self, state: State, message: str, location: str) -> tuple[State, str]:
         self.fault = Fault(message, location, [state.path])
-        self._write("error", state=state.path, message=message, location=location)
+        self._record("error", state=state.path, message=message, location=location)
         return (state, ERROR)
 
     # -- events ---------------------------------------------------------------------------
@@ -265,20 +340,34 @@ class Executor:
             k: object_name(v) if isinstance(v, SceneObject) else v
             for k, v in action.arguments(s).items()
         }
-        stops = [StopCondition(c.name, _bound(c.holds, action)) for c in action.ENDS]
+        watch = _Watch()
+        stops = [
+            StopCondition(c.name, watch(_bound(c.holds, action), c.location or action.LOCATION))
+            for c in action.ENDS
+        ]
         preemptions = self._preemptions(action)
-        stops += [StopCondition(key, holds) for key, (_, _, holds) in preemptions.items()]
-        stops.append(StopCondition(EVENT_STOP, lambda snap: self._find_queued(snap)))
+        stops += [
+            StopCondition(key, watch(holds, location))
+            for key, (_, _, holds, location) in preemptions.items()
+        ]
+        stops.append(StopCondition(EVENT_STOP, watch(self._find_queued, action.LOCATION)))
         self._write("command", state=action.path, device=action.DEVICE, command=action.COMMAND,
                     budget=action.BUDGET)  # fmt: skip
         try:
             result = self.adapter.execute(
                 action.DEVICE, action.COMMAND, arguments, stops, action.BUDGET
             )
-        except Exception as exc:  # an adapter fault of any kind becomes the outcome `error`
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # any adapter fault, SystemExit too
             self._hold()
+            if watch.fault is not None:  # the adapter passed a stop predicate's fault on
+                raise watch.fault from None
             where = f"{action.DEVICE}.{action.COMMAND}"
-            return self._error(action, f"adapter fault in {where}: {exc}", action.LOCATION)
+            return self._error(action, f"adapter fault in {where}: {exc!r}", action.LOCATION)
+        if watch.fault is not None:
+            self._hold()
+            raise watch.fault
         names = {c.name for c in action.ENDS}
         if not isinstance(result, CommandResult) or (
             result.outcome not in names | set(preemptions) | {TIMEOUT, EVENT_STOP}
@@ -290,7 +379,7 @@ class Executor:
                     sensors=self._sensors(action))  # fmt: skip
         if result.outcome in preemptions:
             self._hold()
-            owner, outcome, _ = preemptions[result.outcome]
+            owner, outcome, _, _ = preemptions[result.outcome]
             return Preemption(action, owner, outcome)
         if result.outcome == EVENT_STOP:
             self._hold()
@@ -301,7 +390,7 @@ class Executor:
             action.store(result.value)
         return (action, result.outcome)
 
-    def _preemptions(self, action: Action) -> dict[str, tuple[Composite, str, Any]]:
+    def _preemptions(self, action: Action) -> dict[str, tuple[Composite, str, Any, str]]:
         """Stop predicates for the end-condition expressions of every enclosing state."""
         found = {}
         owner = action.parent
@@ -309,7 +398,8 @@ class Executor:
             for condition in owner.ENDS:
                 if condition.holds is not None:
                     key = f"{owner.path}#{condition.name}"
-                    found[key] = (owner, condition.name, _bound(condition.holds, owner))
+                    holds = _bound(condition.holds, owner)
+                    found[key] = (owner, condition.name, holds, condition.location)
             owner = owner.parent
         return found
 
@@ -330,10 +420,14 @@ class Executor:
         return self._dispatch(preemption.event, s) or None
 
     def _hold(self) -> None:
+        if self.adapter is None:
+            return
         try:
             self.adapter.hold()
-        except Exception as exc:  # holding is best effort; the fault is reported anyway
-            self._write("error", state=self.top.path, message=f"hold failed: {exc}", location="")
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # holding is best effort, reported anyway
+            self._record("error", state=self.top.path, message=f"hold failed: {exc!r}", location="")
 
     def _sensors(self, action: Action) -> dict[str, Any]:
         if not action.SENSORS:
@@ -378,3 +472,25 @@ def _matches(transition: Transition, outcome: str, child: State) -> bool:
 
 def _bound(holds: Any, owner: State) -> Any:
     return lambda s: bool(holds(owner, s))
+
+
+class _Watch:
+    """Wraps stop predicates: the first one that raises stops the command (it holds) and
+    keeps its fault, which the executor reports after the adapter returned."""
+
+    def __init__(self) -> None:
+        self.fault: _Fault | None = None
+
+    def __call__(self, holds: Any, location: str) -> Any:
+        def watched(s: Snapshot) -> bool:
+            if self.fault is not None:
+                return True
+            try:
+                return bool(holds(s))
+            except KeyboardInterrupt:
+                raise
+            except BaseException as exc:  # reported as the action's error
+                self.fault = _Fault(describe(exc), location)
+                return True
+
+        return watched

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from lightrocks.generators.python import expressions as code
 from lightrocks.generators.python.expressions import CompileError, Scope
-from lightrocks.generators.python.names import identifier
+from lightrocks.generators.python.names import alias, identifier, nested
 from lightrocks.languages.domain.types import (
     BOOLEAN,
     FRAME,
@@ -69,8 +69,15 @@ class ModuleView:
     typing_names: list[str] = field(default_factory=list)
 
 
+def module_parts(qualified_name: str) -> list[str]:
+    """The package path of a statechart's module (the domain module is the generator's)."""
+    if qualified_name == DOMAIN:
+        return [DOMAIN]
+    return [identifier(part) for part in qualified_name.split(".")]
+
+
 def module_path(qualified_name: str) -> str:
-    return "/".join(identifier(part) for part in qualified_name.split(".")) + ".py"
+    return "/".join(module_parts(qualified_name)) + ".py"
 
 
 def python_type(t: Type | None) -> str:
@@ -117,20 +124,24 @@ class Builder:
         self.classes: dict[int, tuple[str, str]] = {}  # id(StateInfo) -> (module, class)
         self.components = sorted(typing.models.components, key=lambda c: c.qualified_name)
         for component in self.components:
-            self._register(component.qualified_name, component.name, component.region)
+            module = component.qualified_name
+            self._register(module, _component_class(component), component.region)
 
-    def _register(self, module: str, prefix: str, region: Region) -> None:
+    def _register(self, module: str, outer: str, region: Region) -> None:
         for info in region.states.values():
             if id(info) not in self.classes:
-                self.classes[id(info)] = (module, f"{identifier(prefix)}_{identifier(info.name)}")
+                self.classes[id(info)] = (module, nested(outer, info.name))
                 if info.region is not None:
-                    self._register(module, f"{prefix}_{info.name}", info.region)
+                    self._register(module, nested(outer, info.name), info.region)
 
     # -- modules --------------------------------------------------------------------------
 
     def module(self, component: Component) -> ModuleView:
         self.imports: dict[str, tuple[str, str]] = {}  # alias -> (module, name)
         self.current = component.qualified_name
+        self.local = {_component_class(component)} | {
+            name for module, name in self.classes.values() if module == self.current
+        }
         view = ModuleView(source=_safe(component.region.position.file))
         own = component.loaded
         classes: list[ClassView] = []
@@ -138,24 +149,25 @@ class Builder:
         classes.append(self._component(component))
         view.classes = classes
         depth = component.qualified_name.count(".")
-        for alias, (module, name) in sorted(self.imports.items(), key=lambda i: (i[1], i[0])):
+        for used, (module, name) in sorted(self.imports.items(), key=lambda i: (i[1], i[0])):
             dots = "." * (depth + 1)
-            path = ".".join(identifier(p) for p in module.split("."))
-            named = name if alias == name else f"{name} as {alias}"
+            path = ".".join(module_parts(module))
+            named = name if used == name else f"{name} as {used}"
             view.imports.append(f"from {dots}{path} import {named}")
         text = repr(view)
         view.typing_names = [n for n in ("Any", "ClassVar") if re.search(rf"\b{n}\b", text)]
         return view
 
     def _use(self, module: str, name: str) -> str:
-        """A class of another module, imported under a unique alias."""
+        """A class of another module: under its own name while that is free in this module,
+        else under an alias of the generator's own."""
         if module == self.current:
             return name
-        alias = name
-        while alias in self.imports and self.imports[alias] != (module, name):
-            alias = identifier(module.replace(".", "_")) + "_" + name
-        self.imports[alias] = (module, name)
-        return alias
+        used = name
+        if name in self.local or self.imports.get(name, (module, name)) != (module, name):
+            used = alias(module_parts(module), name)
+        self.imports[used] = (module, name)
+        return used
 
     def _class_of(self, info: StateInfo) -> str:
         if info.imported is not None and info.region is None:

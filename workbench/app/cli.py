@@ -115,12 +115,12 @@ def cmd_fmt(args: argparse.Namespace) -> int:
     changed = [f for f, text in formatted.items() if text != original[f]]
     if args.check:
         for file in changed:
-            print(f"would reformat {file}")
+            print(f"would reformat {report.printable(str(file))}")
         print(f"{len(changed)} of {len(files)} file(s) would change")
         return EXIT_FINDINGS if changed else EXIT_OK
     for file in changed:
         write_atomic(file, formatted[file])
-        print(f"reformatted {file}")
+        print(f"reformatted {report.printable(str(file))}")
     print(f"{len(changed)} of {len(files)} file(s) reformatted")
     return EXIT_OK
 
@@ -157,9 +157,9 @@ def cmd_generate(args: argparse.Namespace) -> int:
     try:
         written = write_all(Path(args.output), generator.generate(request))
     except GenerationError as error:
-        print(f"lightrocks: error: {error}", file=sys.stderr)
+        print(f"lightrocks: error: {report.printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS
-    print(f"{len(written)} file(s) written to {args.output}")
+    print(f"{len(written)} file(s) written to {report.printable(args.output)}")
     return EXIT_OK
 
 
@@ -257,7 +257,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
-        print(error)
+        print(error)  # the findings, already neutralised by report.text
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
@@ -306,7 +306,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return COMMANDS[args.command][1](args)
     except UsageError as error:
-        console.print(f"lightrocks: error: {error}")
+        console.print(f"lightrocks: error: {report.printable(str(error))}", markup=False)
         return EXIT_USAGE
     except KeyboardInterrupt:
         console.print("lightrocks: interrupted")
@@ -315,7 +315,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if os.environ.get("LIGHTROCKS_DEBUG"):
             raise
         console.print(
-            f"lightrocks: internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)"
+            f"lightrocks: internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)",
+            markup=False,
         )
         return EXIT_FINDINGS
 
