@@ -198,12 +198,7 @@ class Transition:
     stimulus_position: Position = _position()
     target_history: str = ""  # ``Target.H``: enter Target through its history pseudostate H
 
-    @property
-    def delay(self) -> Expression | None:
-        """The duration of a time event ``after(d)``, or None for any other stimulus."""
-        if self.stimulus == "after" and len(self.stimulus_arguments) == 1:
-            return self.stimulus_arguments[0]
-        return None
+    delay = property(lambda self: _delay(self))
 
 
 @dataclass(frozen=True)
@@ -216,6 +211,15 @@ class InternalTransition:
     action: tuple[Statement, ...] | None = None
     position: Position = _position()
     stimulus_position: Position = _position()
+
+    delay = property(lambda self: _delay(self))
+
+
+def _delay(transition: Transition | InternalTransition) -> Expression | None:
+    """The duration of a time event ``after(d)``, or None for any other stimulus."""
+    if transition.stimulus == "after" and len(transition.stimulus_arguments) == 1:
+        return transition.stimulus_arguments[0]
+    return None
 
 
 @dataclass(frozen=True)
@@ -261,7 +265,13 @@ class State:
 
 
 Element = (
-    Parameter | Condition | Action | Invariant | State | Pseudostate | Transition
+    Parameter
+    | Condition
+    | Action
+    | Invariant
+    | State
+    | Pseudostate
+    | Transition
     | InternalTransition
 )
 

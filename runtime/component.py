@@ -33,6 +33,7 @@ class Component:
     NAME: ClassVar[str]
     CELL: ClassVar[type[Cell] | None] = None
     PARAMETERS: ClassVar[Mapping[str, str]] = {}  # model name -> Python attribute
+    EVENTS: ClassVar[tuple[str, ...] | None] = None  # declared events, if the model has any
 
     def __init__(self, parent: Composite | None = None, name: str | None = None, **params: Any):
         super().__init__(parent, name)  # type: ignore[call-arg]
@@ -72,8 +73,18 @@ class Component:
         return self
 
     def send(self, event: str) -> bool:
-        """Dispatch one event; True when a transition took it."""
+        """Dispatch one event; True when a transition took it. An event the statechart does
+        not know raises :class:`runtime.executor.UnknownEvent`."""
         return self._running.send(event)
+
+    def advance(self, seconds: float) -> None:
+        """Move the virtual clock of a run without adapter; due ``after(…)`` events fire."""
+        self._running.advance(seconds)
+
+    @property
+    def events(self) -> frozenset[str]:
+        """The events this run accepts."""
+        return self._running.known_events
 
     @property
     def _running(self) -> Executor:

@@ -473,7 +473,9 @@ def declared_events(context: object) -> Iterator[Finding]:
         stimuli = [
             (t.stimulus, t.stimulus_position)
             for t in region.transitions
-            if t.stimulus and t.delay is None and not _is_outcome(region, t)
+            if t.stimulus
+            and t.delay is None
+            and not _is_outcome(region, t)
             and not _is_builtin(region, t)
         ]
         stimuli += [(t.stimulus, t.stimulus_position) for t in region.internal if t.delay is None]

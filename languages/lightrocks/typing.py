@@ -38,11 +38,10 @@ from lightrocks.languages.domain.types import (
 from lightrocks.languages.lightrocks.model import Component, ModelSet, Region
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import ONE, UnitError, lookup
-
-DURATION = QuantityT("Duration", lookup("s").dimension)
 from lightrocks.workbench.diagnostics import did_you_mean
 from lightrocks.workbench.workspace import Loaded
 
+DURATION = QuantityT("Duration", lookup("s").dimension)
 Finding = tuple[ast.Position, str, str]
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
-from lightrocks.runtime import BindingError
+from lightrocks.runtime import BindingError, UnknownEvent
 
 
 def kinds(chart, *wanted: str) -> list[tuple[str, str]]:
@@ -183,7 +183,8 @@ def test_plain_statechart_with_events(build):
     assert chart.active_configuration == ("Counter", "Idle")
     assert chart.send("start")
     assert chart.active_configuration == ("Counter", "Busy", "One")
-    assert not chart.send("nothing")
+    with pytest.raises(UnknownEvent, match="unknown event 'nothing'; Counter accepts: start, step"):
+        chart.send("nothing")
     for _ in range(4):
         chart.send("step")
     assert chart.count == 2 and chart.active_configuration[-1] == "One"
@@ -247,8 +248,9 @@ statechart Q {
 def test_an_outcome_is_never_taken_as_an_external_event(build):
     chart = build({"Q": OUTCOME_AS_EVENT}, "Q")().start()
     chart.send("go")
-    assert not chart.send("Ok")
-    assert not chart.send("out")
+    for outcome in ("Ok", "out", "error"):
+        with pytest.raises(UnknownEvent):
+            chart.send(outcome)
     assert chart.active_configuration == ("Q", "Job", "Load")
     assert chart.send("load")
     assert chart.active_configuration == ("Q", "Idle")

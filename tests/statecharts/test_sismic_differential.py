@@ -11,6 +11,7 @@ from __future__ import annotations
 import random
 
 import pytest
+from sismic.clock import SimulatedClock
 from sismic.interpreter import Interpreter
 
 from lightrocks.languages.lightrocks.syntax import parse_statechart
@@ -123,6 +124,85 @@ statechart Nest {
   F -> A back / { ticks = 0; };
 }
 """,
+    "Pump": """package d;
+
+statechart Pump {
+  events {
+    start;
+    stop;
+    tick;
+  }
+
+  parameters {
+    Integer strokes = 0;
+  }
+
+  initial state Off;
+  state On {
+    initial state Priming;
+    state Running {
+      internal [strokes < 3] tick / { strokes = strokes + 1; };
+    }
+    Priming -> Running after(500 ms);
+    Running -> Priming [strokes >= 3] tick / { strokes = 0; };
+  }
+  state Cooling {
+    entry / { strokes = 0; }
+  }
+
+  Off -> On start;
+  On -> Cooling stop;
+  Cooling -> Off after(750 ms);
+}
+""",
+    "Router": """package d;
+
+statechart Router {
+  parameters {
+    Integer n = 0;
+  }
+
+  initial state Idle;
+  state Small;
+  state Large;
+  state Huge;
+  choice Size;
+
+  Idle -> Size go / { n = n + 1; };
+  Size -> Small [n < 2];
+  Size -> Large [n < 4];
+  Size -> Huge;
+  Small -> Idle back;
+  Large -> Idle back;
+  Huge -> Idle back / { n = 0; };
+}
+""",
+    "Player": """package d;
+
+statechart Player {
+  initial state Stopped;
+  state Playing {
+    initial state Intro;
+    state Song {
+      initial state Verse;
+      state Chorus;
+      Verse -> Chorus next;
+      Chorus -> Verse next;
+    }
+    history H;
+    deep history D;
+    Intro -> Song next;
+  }
+  state Paused;
+
+  Stopped -> Playing play;
+  Playing -> Paused pause;
+  Paused -> Playing.H resume;
+  Paused -> Playing.D deepresume;
+  Paused -> Stopped stop;
+  Playing -> Stopped stop;
+}
+""",
     "Unhandled": """package d;
 
 statechart Unhandled {
@@ -142,30 +222,18 @@ statechart Unhandled {
 }
 
 SEQUENCES = 40
-LENGTH = 10
-
-
-def alphabet(text: str) -> list[str]:
-    """Every stimulus of the chart, so outcome names are sent as events too, and an unknown one."""
-    chart = parse_statechart(text, "chart.lr").statechart
-    found: set[str] = set()
-
-    def walk(elements) -> None:
-        for element in elements:
-            if getattr(element, "stimulus", ""):
-                found.add(element.stimulus)
-            if getattr(element, "body", None):
-                walk(element.body)
-
-    walk(chart.elements)
-    return [*sorted(found), "unknown"]
+LENGTH = 12
+TICK = "+0.25"  # advances both clocks by 0.25 s: every delay is a multiple of it
 
 
 def ours(cls: type, events: list[str]) -> tuple[list[tuple[str, ...]], object]:
     chart = cls().start()
     seen = [_paths(chart.active_configuration)]
     for event in events:
-        chart.send(event)
+        if event == TICK:
+            chart.advance(0.25)
+        else:
+            chart.send(event)
         seen.append(_paths(chart.active_configuration))
     return seen, chart
 
@@ -175,11 +243,15 @@ def _paths(names: tuple[str, ...]) -> tuple[str, ...]:
 
 
 def theirs(text: str, events: list[str]) -> list[tuple[str, ...]]:
-    interpreter = Interpreter(to_sismic(parse_statechart(text, "chart.lr").statechart))
+    chart = to_sismic(parse_statechart(text, "chart.lr").statechart)
+    interpreter = Interpreter(chart, clock=SimulatedClock())
     interpreter.execute()
     seen = [tuple(sorted(interpreter.configuration))]
     for event in events:
-        interpreter.queue(event)
+        if event == TICK:
+            interpreter.clock.time += 0.25
+        else:
+            interpreter.queue(event)
         interpreter.execute()
         seen.append(tuple(sorted(interpreter.configuration)))
     return seen
@@ -189,7 +261,7 @@ def theirs(text: str, events: list[str]) -> list[tuple[str, ...]]:
 def test_configurations_agree_with_sismic(name: str, build) -> None:
     text = CHARTS[name]
     cls = build(name, text)
-    letters = alphabet(text)
+    letters = [*sorted(cls().start().events), TICK]
     rng = random.Random(name)
     sequences = [[rng.choice(letters) for _ in range(LENGTH)] for _ in range(SEQUENCES)]
     disagreements = []
