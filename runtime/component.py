@@ -14,7 +14,7 @@ from typing import IO, Any, ClassVar, Self
 from lightrocks.runtime.binding import bind
 from lightrocks.runtime.contract import Adapter, Snapshot
 from lightrocks.runtime.environment import Environment
-from lightrocks.runtime.executor import Executor, Fault
+from lightrocks.runtime.executor import Executor, Fault, known_events
 from lightrocks.runtime.states import Action, Composite
 from lightrocks.runtime.trace import Record, Trace
 
@@ -83,8 +83,8 @@ class Component:
 
     @property
     def events(self) -> frozenset[str]:
-        """The events this run accepts."""
-        return self._running.known_events
+        """The events this statechart accepts."""
+        return known_events(self)  # type: ignore[arg-type]
 
     @property
     def _running(self) -> Executor:

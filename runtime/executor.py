@@ -77,7 +77,7 @@ class Executor:
         self.finished = False
         self.outcome: str | None = None
         self.events: deque[str] = deque()
-        self.known_events = frozenset(_events(top))
+        self.known_events = known_events(top)
         self._timers: dict[Timer, float] = {}  # deadline of each pending time event
         self._busy = False
         self._clock = 0.0
@@ -562,7 +562,7 @@ class Executor:
         return None
 
 
-def _events(top: State) -> set[str]:
+def known_events(top: State) -> frozenset[str]:
     """Every event the state tree can take: declared ones and the stimuli that are no
     outcome of their source."""
     found: set[str] = set(getattr(top, "EVENTS", None) or ())
@@ -576,8 +576,8 @@ def _events(top: State) -> set[str]:
             if transition.stimulus not in _completions(source):
                 found.add(transition.stimulus)
         for child in top.children.values():
-            found |= _events(child)
-    return found
+            found |= known_events(child)
+    return frozenset(found)
 
 
 def _completions(state: State) -> tuple[str, ...]:
