@@ -18,11 +18,17 @@ from typing import Any
 
 from lightrocks.runtime.contract import TIMEOUT, Adapter, CommandResult, Snapshot, StopCondition
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
-from lightrocks.runtime.states import Action, Composite, State, Transition
+from lightrocks.runtime.states import Action, Choice, Composite, State, Transition
 from lightrocks.runtime.trace import Trace, to_json
 
 ERROR, PREEMPTED, INTERRUPTED = "error", "preempted", "interrupted"
-EVENT_STOP = "@event"
+EVENT_STOP, TIMER_STOP = "@event", "@timer"
+
+Timer = tuple[State, Transition]  # a time event of an active state, pending
+
+
+class UnknownEvent(ValueError):
+    """An event that no transition of the statechart names and no declaration lists."""
 
 
 class _Fault(Exception):
@@ -55,6 +61,7 @@ class Preemption:
     owner: Composite | None = None
     outcome: str = ""
     event: str = ""
+    timer: Timer | None = None
 
 
 Done = tuple[State, str] | Preemption | None
@@ -70,6 +77,8 @@ class Executor:
         self.finished = False
         self.outcome: str | None = None
         self.events: deque[str] = deque()
+        self.known_events = known_events(top)
+        self._timers: dict[Timer, float] = {}  # deadline of each pending time event
         self._busy = False
         self._clock = 0.0
         self._idle = SimpleNamespace(time=0.0)
@@ -78,7 +87,9 @@ class Executor:
 
     @property
     def time(self) -> float:
-        return self._ask("time", lambda: self.adapter.time) if self.adapter is not None else 0.0
+        if self.adapter is None:
+            return self._clock  # the virtual clock, moved by advance()
+        return self._ask("time", lambda: self.adapter.time)
 
     def snapshot(self) -> Snapshot:
         if self.adapter is None:
@@ -106,6 +117,9 @@ class Executor:
 
     def send(self, event: str) -> bool:
         """Dispatch one event; while a command runs it is queued and may preempt it."""
+        if event not in self.known_events:
+            known = ", ".join(sorted(self.known_events)) or "none"
+            raise UnknownEvent(f"unknown event '{event}'; {self.top.NAME} accepts: {known}")
         if self._busy:
             self.events.append(event)
             return True
@@ -122,6 +136,19 @@ class Executor:
 
         self._step(dispatch)
         return handled[0] if handled else True  # no answer: the event ended in an error
+
+    def advance(self, seconds: float) -> None:
+        """Move the virtual clock of a run without adapter; due time events fire on the way,
+        each at its own deadline."""
+        if self.adapter is not None:
+            raise RuntimeError("the adapter's clock drives this run; it cannot be advanced")
+        if seconds < 0:
+            raise ValueError(f"time cannot go back: advance({seconds})")
+        until = self._clock + seconds
+        while not self.finished and (due := self._due(until)) is not None:
+            self._clock = max(self._clock, self._timers[due])
+            self._step(partial(self._fire, due))
+        self._clock = until
 
     def active(self) -> list[State]:
         """The active states from the top down to the innermost one."""
@@ -151,6 +178,11 @@ class Executor:
                     event = self.events.popleft()
                     self._write("event", name=event)
                     done = self._guarded(partial(self._dispatch_now, event))
+                if done is None and not self.finished:
+                    due = self._due(self.time)
+                    if due is not None:
+                        done = self._guarded(partial(self._fire, due))
+                        continue
                 if done is None:
                     return
         except KeyboardInterrupt:
@@ -206,10 +238,14 @@ class Executor:
         with suppress(Exception):  # nothing is left to report a failing trace to
             self.trace.write(time, kind, **fields)
 
-    def _enter(self, state: State, s: Snapshot) -> Done:
-        """Enter ``state`` and descend until something rests or completes."""
+    def _enter(self, state: State, s: Snapshot, history: str = "") -> Done:
+        """Enter ``state`` and descend until something rests or completes; through a
+        ``history`` the last active child is entered instead of the initial one (and, for
+        ``deep`` history, so on below)."""
         while True:
             parent = state.parent
+            if isinstance(state, Choice):
+                return self._choose(state, s)
             if parent is not None:
                 parent.current = state
                 if state.name in parent.BINDINGS:  # an <<import>> state: arguments now
@@ -219,6 +255,7 @@ class Executor:
             if initialize is not None:
                 initialize(s)
             state.on_entry(s)
+            self._arm(state, s)
             violated = self._violated(state, s)
             if violated is not None:
                 return violated
@@ -228,10 +265,23 @@ class Executor:
                 return self._execute(state, s)
             if not isinstance(state, Composite):
                 return None
-            first = self._first_child(state, s)
+            remembered = state.last if history else None
+            if remembered is not None and not remembered.FINAL:
+                first: State | Done = remembered
+                history = "deep" if history == "deep" else ""
+            else:
+                first, history = self._first_child(state, s), ""
             if not isinstance(first, State):
                 return first
             state = first
+
+    def _choose(self, choice: Choice, s: Snapshot) -> Done:
+        """Leave a choice pseudostate at once by its first branch whose guard holds."""
+        parent = choice.parent
+        for transition in parent.transitions_from(choice.name):
+            if transition.guard is None or transition.guard(parent, s):
+                return self._take(parent, transition, s)
+        return self._error(parent, f"no branch of choice '{choice.name}' holds", choice.LOCATION)
 
     def _first_child(self, state: Composite, s: Snapshot) -> State | Done:
         """The child a composite starts in: through the first start condition that holds."""
@@ -257,7 +307,7 @@ class Executor:
         if t.target in owner.end_names:
             return (owner, t.target)
         target = owner.children[t.target]
-        return self._enter(target, s) if enter else target
+        return self._enter(target, s, t.history) if enter else target
 
     def _complete(self, state: State, outcome: str) -> Done:
         """``state`` ended with ``outcome``: leave it and let its parent react."""
@@ -294,7 +344,10 @@ class Executor:
             state.on_exit(s)
         finally:  # left even when its exit action fails: the error belongs to the parent
             self._write("exit", state=state.path)
+            for timer in [t for t in self._timers if t[0] is state]:
+                del self._timers[timer]
             if state.parent is not None:
+                state.parent.last = state
                 state.parent.current = None
 
     def _error(self, state: State, message: str, location: str) -> tuple[State, str]:
@@ -305,10 +358,18 @@ class Executor:
     # -- events ---------------------------------------------------------------------------
 
     def _find(self, event: str, s: Snapshot) -> tuple[State, Transition] | None:
-        """The innermost active state with an enabled transition for ``event``."""
+        """The innermost active state with an enabled transition for ``event``; a state's
+        internal transitions come before those that leave it."""
         for state in reversed(self.active()):
+            for transition in state.INTERNAL:
+                if transition.stimulus == event and (
+                    transition.guard is None or transition.guard(state, s)
+                ):
+                    return state, transition
             parent = state.parent
             if parent is None:
+                continue
+            if event in _completions(state):
                 continue
             for transition in parent.transitions_from(state.name):
                 if transition.stimulus == event and (
@@ -324,9 +385,47 @@ class Executor:
         found = self._find(event, s)
         if found is None:
             return False
-        state, transition = found
-        self._exit(state, s)
-        return self._take(state.parent, transition, s)
+        return self._react(*found, s)
+
+    def _react(self, state: State, transition: Transition, s: Snapshot) -> Done:
+        """Take an enabled transition of an active state: an internal one stays in it."""
+        if transition.target:
+            self._exit(state, s)
+            return self._take(state.parent, transition, s)
+        self._write("transition", state=state.path, source=state.name, target="",
+                    stimulus=transition.stimulus)  # fmt: skip
+        if transition.action is not None:
+            transition.action(state, s)
+        return None
+
+    # -- time events ----------------------------------------------------------------------
+
+    def _arm(self, state: State, s: Snapshot) -> None:
+        """Start the time events of a state just entered: its own and those leaving it."""
+        parent = state.parent
+        leaving = parent.transitions_from(state.name) if parent is not None else ()
+        for transition in leaving:
+            if transition.delay is not None:
+                self._timers[(state, transition)] = self.time + transition.delay(parent, s)
+        for transition in state.INTERNAL:
+            if transition.delay is not None:
+                self._timers[(state, transition)] = self.time + transition.delay(state, s)
+
+    def _due(self, now: float) -> Timer | None:
+        """The pending time event with the earliest deadline not after ``now``."""
+        due = [(deadline, timer) for timer, deadline in self._timers.items() if deadline <= now]
+        return min(due, key=lambda item: item[0])[1] if due else None
+
+    def _fire(self, timer: Timer) -> Done:
+        """A time event occurs once: taken when its guard holds, else dropped."""
+        del self._timers[timer]
+        state, transition = timer
+        s = self.snapshot()
+        owner = state if not transition.target else state.parent
+        self._write("event", name=transition.stimulus, state=state.path)
+        if transition.guard is not None and not transition.guard(owner, s):
+            return None
+        return self._react(state, transition, s)
 
     # -- actions --------------------------------------------------------------------------
 
@@ -349,6 +448,9 @@ class Executor:
             for key, (_, _, holds, location) in preemptions.items()
         ]
         stops.append(StopCondition(EVENT_STOP, watch(self._find_queued, action.LOCATION)))
+        if self._timers:
+            deadline = min(self._timers.values())
+            stops.append(StopCondition(TIMER_STOP, lambda _: self.time >= deadline))
         self._write("command", state=action.path, device=action.DEVICE, command=action.COMMAND,
                     budget=action.BUDGET)  # fmt: skip
         try:
@@ -368,7 +470,7 @@ class Executor:
             raise watch.fault
         names = {c.name for c in action.ENDS}
         if not isinstance(result, CommandResult) or (
-            result.outcome not in names | set(preemptions) | {TIMEOUT, EVENT_STOP}
+            result.outcome not in names | set(preemptions) | {TIMEOUT, EVENT_STOP, TIMER_STOP}
         ):
             self._hold()
             message = f"adapter broke the contract: {result!r} is no outcome of this command"
@@ -382,6 +484,9 @@ class Executor:
         if result.outcome == EVENT_STOP:
             self._hold()
             return Preemption(action, event=self.events.popleft())
+        if result.outcome == TIMER_STOP:
+            self._hold()
+            return Preemption(action, timer=self._due(self.time))
         if result.outcome == TIMEOUT:
             self._hold()
         elif result.value is not None:
@@ -413,6 +518,8 @@ class Executor:
         self._write("outcome", state=action.path, outcome=PREEMPTED)
         if preemption.owner is not None:
             return (preemption.owner, preemption.outcome)
+        if preemption.timer is not None:
+            return self._fire(preemption.timer)
         self._write("event", name=preemption.event)
         s = self.snapshot()
         return self._dispatch(preemption.event, s) or None
@@ -453,6 +560,31 @@ class Executor:
             if violated is not None:
                 return violated
         return None
+
+
+def known_events(top: State) -> frozenset[str]:
+    """Every event the state tree can take: declared ones and the stimuli that are no
+    outcome of their source."""
+    found: set[str] = set(getattr(top, "EVENTS", None) or ())
+    internal = [t.stimulus for t in top.INTERNAL if t.delay is None]
+    found.update(internal)
+    if isinstance(top, Composite):
+        for transition in top.TRANSITIONS:
+            source = top.children.get(transition.source)
+            if source is None or transition.delay is not None or not transition.stimulus:
+                continue
+            if transition.stimulus not in _completions(source):
+                found.add(transition.stimulus)
+        for child in top.children.values():
+            found |= known_events(child)
+    return frozenset(found)
+
+
+def _completions(state: State) -> tuple[str, ...]:
+    """Outcomes ``state`` ends with: they fire only on completion, never as external events."""
+    if isinstance(state, Action | Composite):
+        return (*state.OUTCOMES, ERROR, TIMEOUT, PREEMPTED)
+    return (ERROR,)  # a violated invariant ends even a simple state
 
 
 def _matches(transition: Transition, outcome: str, child: State) -> bool:

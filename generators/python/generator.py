@@ -222,6 +222,7 @@ class Builder:
         elif info.region is not None:  # a body with actions only: still a simple state
             scope = Scope(self.typing, info.region)
             self._actions(info.region, view, scope)
+            self._internal(info.region, view, scope)
             inner = [(i.expression, scope, i.position) for i in info.region.invariants]
             self._invariants(view, invariants + inner)
         elif invariants:
@@ -258,6 +259,8 @@ class Builder:
         cell = self._cell(component)
         if cell is not None:
             view.constants.append(f"CELL = {self._use(DOMAIN, cell)}")
+        if region.events is not None:
+            view.constants.append(f"EVENTS = {_tuple(repr(e) for e in region.events)}")
         mapping = ", ".join(f"{n!r}: {identifier(n)!r}" for n in region.parameters)
         view.constants.append(f"PARAMETERS: ClassVar[dict[str, str]] = {{{mapping}}}")
         declared_types = {
@@ -294,7 +297,10 @@ class Builder:
         initial = next((s.name for s in region.states.values() if s.state.is_initial), None)
         if initial is not None:
             view.constants.append(f"INITIAL = {initial!r}")
-        children = ", ".join(f"{n!r}: {self._class_of(i)}" for n, i in region.states.items())
+        children = ", ".join(
+            [f"{n!r}: {self._class_of(i)}" for n, i in region.states.items()]
+            + [f"{n!r}: rt.Choice" for n, p in region.pseudostates.items() if p.kind == "choice"]
+        )
         view.tables.append(f"CHILDREN: ClassVar[dict[str, type[rt.State]]] = {{{children}}}")
         bindings = []
         for info in region.states.values():
@@ -307,6 +313,42 @@ class Builder:
         view.tables.append("STARTS = " + self._conditions(region.start_conditions, view, scope))
         view.tables.append("ENDS = " + self._conditions(region.end_conditions, view, scope))
         view.tables.append("TRANSITIONS = " + self._transitions(region, view, scope))
+        self._internal(region, view, scope)
+
+    def _internal(self, region: Region, view: ClassView, scope: Scope) -> None:
+        """The internal transitions of the state that owns ``region``."""
+        items = []
+        for index, t in enumerate(region.internal):
+            named = self._reaction(t, f"internal_{index}", view, scope)
+            extra = "".join(f", {k}={v}" for k, v in named.items() if v != "None")
+            items.append(
+                f"rt.Transition('', '', {t.stimulus!r}{extra}, location={str(t.position)!r})"
+            )
+        if items:
+            view.tables.append(f"INTERNAL = {_tuple(items)}")
+
+    def _reaction(
+        self,
+        t: ast.Transition | ast.InternalTransition,
+        suffix: str,
+        view: ClassView,
+        scope: Scope,
+    ) -> dict[str, str]:
+        """Methods for the guard, action and delay of a transition, by keyword."""
+        guard = action = delay = "None"
+        if t.guard is not None:
+            guard = f"_guard_{suffix}"
+            body = [f"return {self._expr(t.guard, scope)}"]
+            view.methods.append(Method(guard, ", s: rt.Snapshot", "bool", body))
+        if t.action:
+            action = f"_action_{suffix}"
+            body = self._statements(t.action, scope)
+            view.methods.append(Method(action, ", s: rt.Snapshot", "None", body))
+        if t.stimulus == "after" and len(t.stimulus_arguments) == 1:
+            delay = f"_delay_{suffix}"
+            body = [f"return {self._expr(t.stimulus_arguments[0], scope)}"]
+            view.methods.append(Method(delay, ", s: rt.Snapshot", "float", body))
+        return {"guard": guard, "action": action, "delay": delay}
 
     def _bindings(self, info: StateInfo, scope: Scope) -> str:
         names = list(info.imported.region.parameters)
@@ -331,20 +373,15 @@ class Builder:
     def _transitions(self, region: Region, view: ClassView, scope: Scope) -> str:
         items = []
         for index, t in enumerate(region.transitions):
-            guard = action = post = "None"
-            if t.guard is not None:
-                guard = f"_guard_{index}"
-                body = [f"return {self._expr(t.guard, scope)}"]
-                view.methods.append(Method(guard, ", s: rt.Snapshot", "bool", body))
-            if t.action:
-                action = f"_action_{index}"
-                body = self._statements(t.action, scope)
-                view.methods.append(Method(action, ", s: rt.Snapshot", "None", body))
+            named = self._reaction(t, str(index), view, scope)
             if t.postcondition is not None:
-                post = f"_post_{index}"
+                named["post"] = f"_post_{index}"
                 body = [f"return {self._expr(t.postcondition, scope)}"]
-                view.methods.append(Method(post, ", s: rt.Snapshot", "bool", body))
-            named = {"guard": guard, "action": action, "post": post}
+                view.methods.append(Method(named["post"], ", s: rt.Snapshot", "bool", body))
+            if t.target_history:
+                inner = region.states[t.target].region
+                kind = inner.pseudostates[t.target_history].kind if inner else "history"
+                named["history"] = repr("deep" if kind == "deep history" else "shallow")
             extra = "".join(f", {k}={v}" for k, v in named.items() if v != "None")
             items.append(
                 f"rt.Transition({t.source!r}, {t.target!r}, {t.stimulus!r}{extra}, "

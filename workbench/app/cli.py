@@ -204,7 +204,11 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
         "--param", action="append", default=[], metavar="NAME=VALUE", help="parameter value"
     )
     parser.add_argument("--trace", help="write the trace (JSON lines) to this file")
-    parser.add_argument("--events", default="", help="comma-separated events to send in order")
+    parser.add_argument(
+        "--events",
+        default="",
+        help="comma-separated events to send in order; +500ms advances the virtual clock",
+    )
     parser.add_argument("--seed", type=int, default=0, help="the adapter's random seed")
     parser.add_argument(
         "--seeds", type=int, metavar="N", help="repeat with seeds SEED..SEED+N-1 and report"

@@ -143,6 +143,16 @@ def _describe(text: str) -> str:
     return f"{text} ({kinds.get(type(literal), 'an expression')})"
 
 
+def parse_delay(text: str) -> float:
+    """``+500ms`` among ``--events``: how far to advance the virtual clock, in seconds."""
+    value = _literal(text.removeprefix("+"))
+    if not isinstance(value, ast.Quantity) or _dimension(value) != lookup("s").dimension:
+        raise RunError(f"'{text}' is not a time to wait: write it like +500ms")
+    if value.value < 0:
+        raise RunError(f"'{text}': time cannot go back")
+    return value.value
+
+
 def parse_noise(text: str) -> Noise:
     """``--perception-noise 2mm,2deg``: the camera's position and rotation sigmas in SI."""
     usage = f"--perception-noise '{text}' is not LENGTH,ANGLE such as 2mm,2deg"
