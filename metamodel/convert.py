@@ -1,13 +1,16 @@
 """Conversion of textX parse trees into the AST of :mod:`metamodel.ast`.
 
 Each grammar rule ``R`` is handled by a method ``rule_R``; a language subclasses
-:class:`Converter` to add the rules of its own fragment. Positions come from the character
-offsets textX records, turned into line and column with one bisect per node.
+:class:`Converter` to add the rules of its own fragment, and the rules of grammar extensions
+come as functions ``(converter, node) -> AST node`` in ``extension_rules``. Positions come
+from the character offsets textX records, turned into line and column with one bisect per
+node.
 """
 
 from __future__ import annotations
 
 import bisect
+from collections.abc import Callable, Mapping
 from typing import Any
 
 from lightrocks.metamodel import ast
@@ -15,8 +18,14 @@ from lightrocks.metamodel.units import UnitError, lookup
 
 
 class Converter:
-    def __init__(self, text: str, file: str) -> None:
+    def __init__(
+        self,
+        text: str,
+        file: str,
+        extension_rules: Mapping[str, Callable[[Converter, Any], Any]] | None = None,
+    ) -> None:
         self.file = file
+        self.extension_rules = extension_rules or {}
         self._line_starts = [0] + [i + 1 for i, c in enumerate(text) if c == "\n"]
 
     # -- infrastructure -------------------------------------------------------------------
@@ -27,7 +36,11 @@ class Converter:
         return ast.Position(self.file, line, offset - self._line_starts[line - 1] + 1)
 
     def convert(self, node: Any) -> Any:
-        return getattr(self, f"rule_{type(node).__name__}")(node)
+        rule = type(node).__name__
+        method = getattr(self, f"rule_{rule}", None)
+        if method is None:
+            return self.extension_rules[rule](self, node)
+        return method(node)
 
     def optional(self, node: Any) -> Any:
         return None if node is None or node == "" else self.convert(node)

@@ -3,13 +3,18 @@
 A language's grammar is its own root fragment followed by the shared fragments of this
 package (common rules, expressions, statecharts). The root fragment comes first because
 textX takes the first rule as the root of the model.
+
+textX cannot override a rule of an imported grammar, so the shared fragments leave named
+hooks open instead (:data:`HOOKS`). A :class:`GrammarExtension` brings its own rules and
+names which of them fill which hook; a hook nobody fills matches nothing.
 """
 
 from __future__ import annotations
 
 import gc
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
@@ -28,22 +33,58 @@ class SyntaxProblem(Exception):
         self.column = column
 
 
-def compose(root: Path, *fragments: str) -> str:
-    """Grammar text of ``root`` followed by the named fragments of this package."""
+HOOKS = ("ChartExtension", "ElementExtension")
+"""Rules of the shared fragments that extensions fill (see statecharts.tx)."""
+
+_NOTHING = "/(?!)/"  # a pattern that never matches: the body of an unfilled hook
+
+
+@dataclass(frozen=True)
+class GrammarExtension:
+    """textX rules of an extension and the hooks they fill: ``(("ElementExtension",
+    ("Requirement",)),)`` makes ``Requirement`` one more alternative of that hook."""
+
+    rules: str
+    hooks: tuple[tuple[str, tuple[str, ...]], ...]
+
+
+class GrammarExtensionError(Exception):
+    """An extension names a hook that does not exist or leaves it without rules."""
+
+
+def compose(root: Path, *fragments: str, extensions: Iterable[GrammarExtension] = ()) -> str:
+    """Grammar text of ``root``, the named fragments of this package and the hook rules."""
     parts = [root.read_text(encoding="utf-8")]
     parts += [(FRAGMENTS / f"{name}.tx").read_text(encoding="utf-8") for name in fragments]
+    filled: dict[str, list[str]] = {hook: [] for hook in HOOKS}
+    for extension in extensions:
+        for hook, rules in extension.hooks:
+            if hook not in filled or not rules:
+                raise GrammarExtensionError(f"no grammar hook '{hook}' or no rules for it")
+            filled[hook] += rules
+        parts.append(extension.rules)
+    parts += [f"{hook}: {' | '.join(rules) or _NOTHING};" for hook, rules in filled.items()]
     return "\n".join(parts)
 
 
 @cache
-def textx_metamodel(root: Path, fragments: tuple[str, ...]):
+def textx_metamodel(
+    root: Path, fragments: tuple[str, ...], extensions: tuple[GrammarExtension, ...] = ()
+):
     """The textX metamodel of a composed grammar, built once per process."""
-    return metamodel_from_str(compose(root, *fragments), autokwd=True, skipws=True)
+    text = compose(root, *fragments, extensions=extensions)
+    return metamodel_from_str(text, autokwd=True, skipws=True)
 
 
-def parse(root: Path, fragments: tuple[str, ...], text: str, file: str):
+def parse(
+    root: Path,
+    fragments: tuple[str, ...],
+    text: str,
+    file: str,
+    extensions: tuple[GrammarExtension, ...] = (),
+):
     """Parse ``text``; raise :class:`SyntaxProblem` with a readable message on mismatch."""
-    metamodel = textx_metamodel(root, fragments)
+    metamodel = textx_metamodel(root, fragments, extensions)
     try:
         return metamodel.model_from_str(text, file_name=file)
     except TextXSyntaxError as error:
@@ -68,7 +109,8 @@ def paused_gc() -> Iterator[None]:
 
 
 def _describe(error: TextXSyntaxError) -> str:
-    expected = sorted({_rule_text(rule) for rule in (error.expected_rules or [])})
+    rules = [r for r in error.expected_rules or [] if getattr(r, "to_match", None) != "(?!)"]
+    expected = sorted({_rule_text(rule) for rule in rules})
     found = error.context.split("*")[-1].strip().split()[:1] if error.context else []
     if expected:
         shown = ", ".join(expected[:6]) + (", …" if len(expected) > 6 else "")

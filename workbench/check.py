@@ -10,6 +10,7 @@ from typing import Any
 
 from lightrocks.workbench.cocos import CoCo
 from lightrocks.workbench.diagnostics import Diagnostics
+from lightrocks.workbench.extensions import language_extensions
 from lightrocks.workbench.languages import extensions, languages
 from lightrocks.workbench.modelpath import ModelPath, model_files, root_for
 from lightrocks.workbench.workspace import Workspace
@@ -25,8 +26,9 @@ class CheckContext:
 
 
 def all_cocos() -> list[CoCo]:
-    """Every CoCo of every registered language, ordered by code."""
-    unique = {id(c): c for lang in languages() for c in lang.cocos}
+    """Every CoCo of every registered language and language extension, ordered by code."""
+    found = [c for lang in (*languages(), *language_extensions()) for c in lang.cocos]
+    unique = {id(c): c for c in found}
     return sorted(unique.values(), key=lambda c: c.code)
 
 

@@ -9,7 +9,7 @@ forking the generator (MontiCore's template path).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from importlib.metadata import entry_points
@@ -62,10 +62,14 @@ def load_generator(name: str) -> Generator:
         raise GenerationError(f"target '{name}' cannot be loaded: {error}") from None
 
 
-def template_environment(builtin: Path, override: Path | None) -> jinja2.Environment:
-    """Templates from ``override`` first, then the generator's own folder."""
+def template_environment(
+    builtin: Path, override: Path | None, additions: Sequence[Path] = ()
+) -> jinja2.Environment:
+    """Templates from ``override`` first, then the generator's own folder, then the folders
+    of language extensions (templates for their elements)."""
     folders = [str(override)] if override is not None else []
     folders.append(str(builtin))
+    folders += [str(folder) for folder in additions]
     return jinja2.Environment(
         loader=jinja2.FileSystemLoader(folders),
         undefined=jinja2.StrictUndefined,

@@ -54,6 +54,8 @@ class Region:
     events: dict[str, ast.Event] | None = None  # declared events (top region only)
     actions: list[ast.Action] = field(default_factory=list)
     invariants: list[ast.Invariant] = field(default_factory=list)
+    extensions: list[object] = field(default_factory=list)
+    """Elements of language extensions (workbench.extensions), inherited ones first."""
     parent: Region | None = None
 
     @property
@@ -216,6 +218,7 @@ class ModelSet:
             region.pseudostates.update(base.pseudostates)
             region.internal.extend(base.internal)
             region.invariants.extend(base.invariants)
+            region.extensions.extend(base.extensions)
             if base.events is not None:
                 region.events = dict(base.events)
         own_actions: list[ast.Action] = []
@@ -243,6 +246,8 @@ class ModelSet:
                 own_actions.append(element)
             elif isinstance(element, ast.Invariant):
                 region.invariants.append(element)
+            else:
+                region.extensions.append(element)
         overridden = {a.kind for a in own_actions}
         inherited = [a for a in (base.actions if base else []) if a.kind not in overridden]
         region.actions = inherited + own_actions

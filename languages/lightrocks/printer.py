@@ -24,6 +24,7 @@ from lightrocks.metamodel.printer import (
     statement,
     stereotypes,
 )
+from lightrocks.workbench.extensions import extension_of
 
 
 def format_statechart_text(text: str, file: str) -> str:
@@ -106,6 +107,11 @@ def _element(writer: Writer, node: ast.Element | ast.ParameterBlock | ast.EventB
                 writer.item(event.position, "event")
                 writer.line([f"{event.name};"], event.position.line)
             writer.close(where)
+        case _:
+            extension = extension_of(node)
+            if extension is None:
+                raise TypeError(f"not an element: {node!r}")
+            extension.printers[type(node)](writer, node)
 
 
 def _state(writer: Writer, node: ast.State) -> None:

@@ -1,4 +1,8 @@
-"""Concrete syntax of LightRocks action components (``.lr``): grammar and AST conversion."""
+"""Concrete syntax of LightRocks action components (``.lr``): grammar and AST conversion.
+
+The grammar is composed with the registered extensions of the language (see
+:mod:`workbench.extensions`), so an installed extension's syntax is read everywhere.
+"""
 
 from __future__ import annotations
 
@@ -7,7 +11,8 @@ from typing import Any
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.convert import Converter
-from lightrocks.metamodel.grammar import parse, paused_gc
+from lightrocks.metamodel.grammar import GrammarExtension, parse, paused_gc, textx_metamodel
+from lightrocks.workbench.extensions import extensions_of
 
 GRAMMAR = Path(__file__).with_name("lightrocks.tx")
 FRAGMENTS = ("common", "statecharts", "expressions")
@@ -32,8 +37,19 @@ class LightRocksConverter(Converter):
         )
 
 
+def grammar_extensions() -> tuple[GrammarExtension, ...]:
+    return tuple(e.grammar for e in extensions_of("lightrocks"))
+
+
+def metamodel():
+    """The textX metamodel of ``.lr`` files, with the syntax of every installed extension."""
+    return textx_metamodel(GRAMMAR, FRAGMENTS, grammar_extensions())
+
+
 def parse_statechart(text: str, file: str) -> ast.StatechartUnit:
     """Parse one ``.lr`` text; raises ``metamodel.grammar.SyntaxProblem``."""
+    extensions = extensions_of("lightrocks")
+    rules = {rule: build for e in extensions for rule, build in e.build.items()}
     with paused_gc():
-        tree = parse(GRAMMAR, FRAGMENTS, text, file)
-        return LightRocksConverter(text, file).convert(tree)
+        tree = parse(GRAMMAR, FRAGMENTS, text, file, grammar_extensions())
+        return LightRocksConverter(text, file, rules).convert(tree)

@@ -2,11 +2,10 @@
 
 from textx import language
 
-from lightrocks.languages.lightrocks.syntax import FRAGMENTS, GRAMMAR
-from lightrocks.metamodel.grammar import textx_metamodel
+from lightrocks.languages.lightrocks.syntax import metamodel
 
 
 @language("lightrocks", "*.lr")
 def lightrocks_language():
     """LightRocks action components as UML/P statecharts."""
-    return textx_metamodel(GRAMMAR, FRAGMENTS)
+    return metamodel()

@@ -16,6 +16,7 @@ from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import report
 from lightrocks.workbench.check import all_cocos, check
 from lightrocks.workbench.diagnostics import Diagnostics
+from lightrocks.workbench.extensions import language_extensions
 from lightrocks.workbench.files import write_atomic
 from lightrocks.workbench.generators import (
     GenerationError,
@@ -302,6 +303,7 @@ def cmd_list(args: argparse.Namespace) -> int:
 
     if args.what == "languages":
         rows = [(lang.name, " ".join(lang.extensions), lang.description) for lang in languages()]
+        rows += [(e.name, f"extends {e.extends}", e.description) for e in language_extensions()]
     elif args.what == "cocos":
         rows = [(c.code, c.severity.value, c.summary) for c in all_cocos()]
     elif args.what == "generators":
