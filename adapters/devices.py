@@ -17,7 +17,15 @@ import numpy as np
 import pinocchio as pin
 
 from lightrocks.adapters.control import DT, ArmState, CartesianImpedance, JointImpedance
-from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, HAND_BODY, READY_Q, load_robot
+from lightrocks.adapters.robot_model import (
+    ARM_DOF,
+    FT_SITE,
+    HAND_BODY,
+    READY_Q,
+    ROBOT_ROOT,
+    load_robot,
+)
+from lightrocks.adapters.scene_registry import objects
 from lightrocks.adapters.sensing import WristSensor
 from lightrocks.adapters.video import VideoRecorder
 from lightrocks.runtime.contract import (
@@ -381,6 +389,10 @@ class SimulatedCell:
         self.plant.sync()
         data = self.plant.data
         return pin.SE3(data.xmat[body].reshape(3, 3).copy(), data.xpos[body].copy())
+
+    def objects(self) -> list[str]:
+        """The scene's bodies a cell may name as objects (binding checks them)."""
+        return objects(self.plant.model, ROBOT_ROOT)
 
     def measurements(self) -> dict[str, Any]:
         """Scene ground truth (e.g. screw depth) from the scene's hook, if it has one."""

@@ -8,7 +8,6 @@ finger_right (``NV`` = 9); the controllers act on the first ``ARM_DOF`` joints.
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import numpy as np
@@ -34,18 +33,8 @@ READY_Q = np.array([0.0, 0.35, 0.0, 1.75, 0.0, np.pi - 2.1, 0.0])
 j2 + j4 + j6 = pi makes the tool axis vertical; the TCP x axis points to -x of the world.
 """
 
-_SCENE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-
-
-def scene_path(scene: str) -> Path:
-    """The MJCF file of a scene name (``empty``, ``screwing``, ``din_rail``, ...)."""
-    if not isinstance(scene, str) or not _SCENE_NAME.fullmatch(scene) or scene == "lwr":
-        raise ValueError(f"invalid scene name {scene!r}")
-    path = MODELS_DIR / f"{scene}.xml"
-    if not path.is_file():
-        known = sorted(p.stem for p in MODELS_DIR.glob("*.xml") if p.stem != "lwr")
-        raise ValueError(f"unknown scene {scene!r}; known scenes: {', '.join(known)}")
-    return path
+ROBOT_ROOT = "base"
+"""The robot's root body: every body below it belongs to the robot, not to the scene."""
 
 
 def load_robot() -> pin.Model:

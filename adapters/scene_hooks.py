@@ -1,25 +1,22 @@
-"""Optional scene-specific behaviour, looked up lazily in ``adapters.scenes`` (owned by the
-scene files' author). Every hook is optional: without the module, or without a hook in it,
-scenes are plain physics and report no measurements.
+"""The optional behaviour of a scene, from its registration (see adapters.scene_registry).
+Every hook is optional: a scene without hooks is plain physics and reports no measurements.
 
-Hooks used, all keyed by scene name:
-- ``measurements(scene, model, data) -> dict``: ground truth (e.g. ``screw_depth``);
-- ``scene_step(scene, model, data)``: called before every MuJoCo step;
-- ``make_twin(scene)``: an analytic stand-in of the scene's fixture for the Pinocchio twin, with
+- ``measurements(model, data) -> dict``: ground truth (e.g. ``screw_depth``);
+- ``step(model, data)``: called before every MuJoCo step;
+- ``twin()``: an analytic stand-in of the scene's fixture for the Pinocchio twin, with
   ``step(dt, tcp_position, tcp_rotation, holding) -> wrench at the TCP (world axes)``,
   ``graspable(tcp_position) -> bool`` and ``measurements() -> dict``.
 """
 
 from __future__ import annotations
 
-import functools
-import importlib
 from collections.abc import Callable
-from types import ModuleType
 from typing import Any, Protocol
 
 import mujoco
 import numpy as np
+
+from lightrocks.adapters.scene_registry import scene as registered
 
 
 class FixtureTwin(Protocol):
@@ -34,31 +31,16 @@ class FixtureTwin(Protocol):
     def measurements(self) -> dict[str, Any]: ...
 
 
-def _scenes() -> ModuleType | None:
-    try:
-        return importlib.import_module("lightrocks.adapters.scenes")
-    except ModuleNotFoundError:
-        return None
-
-
-def _hook(name: str) -> Callable[..., Any] | None:
-    module = _scenes()
-    return None if module is None else getattr(module, name, None)
-
-
 def measurements(scene: str, model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, Any]:
-    hook = _hook("measurements")
-    return {} if hook is None else dict(hook(scene, model, data))
+    hook = registered(scene).measurements
+    return {} if hook is None else dict(hook(model, data))
 
 
 def step_hook(scene: str) -> Callable[[mujoco.MjModel, mujoco.MjData], None] | None:
-    """The per-step hook bound to the scene, or None."""
-    hook = _hook("scene_step")
-    if hook is None:
-        return None
-    return functools.partial(hook, scene)
+    """The per-step hook of the scene, or None."""
+    return registered(scene).step
 
 
 def fixture_twin(scene: str) -> FixtureTwin | None:
-    hook = _hook("make_twin")
-    return None if hook is None else hook(scene)
+    make = registered(scene).twin
+    return None if make is None else make()

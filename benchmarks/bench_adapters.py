@@ -21,7 +21,7 @@ import pinocchio as pin
 
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
-from lightrocks.adapters.robot_model import scene_path
+from lightrocks.adapters.scene_registry import load_model
 from lightrocks.runtime.contract import StopCondition
 
 STOPS = [
@@ -33,7 +33,7 @@ STOPS = [
 
 def bare_step_seconds(ticks: int) -> float:
     """Wall seconds per bare mj_step of the empty scene."""
-    model = mujoco.MjModel.from_xml_path(str(scene_path("empty")))
+    model = load_model("empty")
     model.opt.timestep = 0.001
     data = mujoco.MjData(model)
     start = time.perf_counter()

@@ -1,4 +1,5 @@
-"""Binding an adapter: check that it offers every device, command and sensor a cell uses.
+"""Binding an adapter: check that it offers every device, command and sensor a cell uses,
+and, when it simulates a scene (it has ``objects()``), every object the cell names.
 
 The device types are the ``typing.Protocol`` classes the generator emits from the domain
 interface: their methods are the commands, their properties the sensors. All problems are
@@ -56,11 +57,21 @@ def problems(adapter: Adapter, devices: Mapping[str, type]) -> list[str]:
     return found
 
 
+def missing_objects(adapter: Adapter, objects: Mapping[str, Any]) -> list[str]:
+    """The cell's objects the adapter's scene does not have (none without a scene)."""
+    offered = getattr(adapter, "objects", None)
+    if offered is None:
+        return []
+    scene = getattr(adapter, "scene", "?")
+    known = set(offered())
+    return [f"scene '{scene}' has no object '{name}'" for name in objects if name not in known]
+
+
 def bind(adapter: Adapter, cell: Any) -> None:
-    """Raise :class:`BindingError` naming every missing device, command and sensor."""
+    """Raise :class:`BindingError` naming every missing device, command, sensor and object."""
     if cell is None:
         return
-    found = problems(adapter, cell.DEVICES)
+    found = problems(adapter, cell.DEVICES) + missing_objects(adapter, cell.OBJECTS)
     if found:
         raise BindingError(
             f"adapter {type(adapter).__name__} does not fit cell {cell.__name__}:\n  "

@@ -18,15 +18,15 @@ from lightrocks.adapters.robot_model import (
     NV,
     READY_Q,
     finger_push,
-    scene_path,
 )
+from lightrocks.adapters.scene_registry import load_model
 
 
 class MujocoPlant:
     """A scene simulated by MuJoCo with the timestep forced to the control period."""
 
     def __init__(self, scene: str) -> None:
-        self.model = mujoco.MjModel.from_xml_path(str(scene_path(scene)))
+        self.model = load_model(scene)
         self.model.opt.timestep = DT
         self.data = mujoco.MjData(self.model)
         joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]

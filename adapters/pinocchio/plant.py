@@ -38,8 +38,8 @@ from lightrocks.adapters.robot_model import (
     TCP_SITE,
     finger_push,
     load_robot,
-    scene_path,
 )
+from lightrocks.adapters.scene_registry import load_model
 from lightrocks.adapters.vec import cross
 
 CONTACT_STIFFNESS = 2e4
@@ -62,7 +62,7 @@ class PinocchioPlant:
 
     def __init__(self, scene: str) -> None:
         self._scene = scene
-        self.model = mujoco.MjModel.from_xml_path(str(scene_path(scene)))
+        self.model = load_model(scene)
         self.data = mujoco.MjData(self.model)
         joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
         self._qadr = np.array([j.qposadr[0] for j in joints])

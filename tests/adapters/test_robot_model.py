@@ -12,7 +12,6 @@ from lightrocks.adapters.robot_model import (
     ROBOT_FILE,
     TCP_SITE,
     load_robot,
-    scene_path,
 )
 
 TOLERANCE = 1e-9
@@ -69,11 +68,13 @@ def test_kinematics_and_dynamics_agree(models):
         assert np.allclose(bias, mj_data.qfrc_bias, atol=TOLERANCE)
 
 
-def test_scene_path_rejects_unknown_names():
-    assert scene_path("empty").name == "empty.xml"
-    for bad in ("nowhere", "../lwr", "lwr", ""):
-        with pytest.raises(ValueError, match="scene"):
-            scene_path(bad)
+def test_scene_registry_rejects_unknown_names():
+    from lightrocks.adapters.scene_registry import UnknownScene, scene
+
+    assert scene("empty").mjcf.name == "empty.xml"
+    for bad in ("nowhere", "../lwr", "lwr", "", None):
+        with pytest.raises(UnknownScene, match="unknown scene"):
+            scene(bad)
 
 
 def test_finger_damping_constant_matches_the_model(models):

@@ -8,7 +8,8 @@ from collections.abc import Callable
 from importlib.metadata import entry_points
 from typing import Any
 
-from lightrocks.workbench.app.errors import RunError
+from lightrocks.adapters.scene_registry import UnknownScene
+from lightrocks.workbench.app.errors import ModelError, RunError
 from lightrocks.workbench.app.values import Noise
 
 
@@ -43,7 +44,11 @@ def adapter_options(
 
 
 def adapter_for(name: str, scene: str | None, **options: Any) -> Any:
-    return adapter_factory(name)(scene=scene, **options)
+    """The adapter on the cell's scene; a scene nobody registered is the model's mistake."""
+    try:
+        return adapter_factory(name)(scene=scene, **options)
+    except UnknownScene as error:
+        raise ModelError(f"error: <<scene>> of the cell: {error}") from None
 
 
 def scene_of(cls: type) -> str | None:

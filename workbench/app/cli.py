@@ -293,8 +293,8 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:
-    parser = sub.add_parser("list", help="list languages, context conditions or generators")
-    parser.add_argument("what", choices=("languages", "cocos", "generators", "adapters"))
+    parser = sub.add_parser("list", help="list languages, CoCos, generators, adapters or scenes")
+    parser.add_argument("what", choices=("languages", "cocos", "generators", "adapters", "scenes"))
 
 
 @command(_configure_list)

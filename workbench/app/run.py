@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from lightrocks.workbench.app.adapter_factory import adapter_for, adapter_options, scene_of
-from lightrocks.workbench.app.errors import RunError
+from lightrocks.workbench.app.errors import ModelError, RunError
 from lightrocks.workbench.app.loading import load_component
 from lightrocks.workbench.app.values import Noise, parameters, parse_delay
 
@@ -67,7 +67,7 @@ def drive(
     """Create, bind and run the chart; send the events once it rests.
 
     The binding is checked before the trace file is opened, so a run that cannot start
-    leaves no file behind.
+    leaves no file behind. A cell that does not fit the adapter is the model's mistake.
     """
     from lightrocks.runtime import BindingError, Trace
     from lightrocks.runtime.binding import bind
@@ -84,7 +84,7 @@ def drive(
         if adapter is not None:
             bind(adapter, cls.CELL)
     except BindingError as error:
-        raise RunError(str(error)) from None
+        raise ModelError(f"error: {error}") from None
     try:
         recorder = Trace(trace)
     except OSError as error:
