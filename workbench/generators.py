@@ -66,12 +66,20 @@ def template_environment(
     builtin: Path, override: Path | None, additions: Sequence[Path] = ()
 ) -> jinja2.Environment:
     """Templates from ``override`` first, then the generator's own folder, then the folders
-    of language extensions (templates for their elements)."""
+    of language extensions (templates for their elements). The generator's own templates
+    are also reachable as ``builtin/<name>``, so an override can ``{% extends %}`` the
+    template it replaces and change one block instead of copying it."""
     folders = [str(override)] if override is not None else []
     folders.append(str(builtin))
     folders += [str(folder) for folder in additions]
+    loader = jinja2.ChoiceLoader(
+        [
+            jinja2.FileSystemLoader(folders),
+            jinja2.PrefixLoader({"builtin": jinja2.FileSystemLoader(str(builtin))}),
+        ]
+    )
     return jinja2.Environment(
-        loader=jinja2.FileSystemLoader(folders),
+        loader=loader,
         undefined=jinja2.StrictUndefined,
         keep_trailing_newline=True,
         trim_blocks=True,

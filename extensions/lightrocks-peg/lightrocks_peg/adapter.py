@@ -1,0 +1,36 @@
+"""A MuJoCo adapter with a force guard, registered as the ``mujoco-guarded`` adapter.
+
+Every command gets one more stop predicate, checked on every control tick before the
+command's own: a contact force above ``FORCE_LIMIT`` ends the command with the outcome
+``overload``. Like every ending of a command, the device layer then holds the robot still
+and compliant, so a jammed peg is not pushed further.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.runtime.contract import CommandResult, Snapshot, StopCondition
+
+FORCE_LIMIT = 80.0
+"""Contact force [N] beyond which a command is stopped."""
+OVERLOAD = "overload"
+
+
+def overloaded(snapshot: Snapshot) -> bool:
+    return snapshot.robot.wrench.force.norm() > FORCE_LIMIT
+
+
+class GuardedMujocoAdapter(MujocoAdapter):
+    def execute(
+        self,
+        device: str,
+        command: str,
+        args: Mapping[str, Any],
+        stop: Sequence[StopCondition],
+        budget: float,
+    ) -> CommandResult:
+        guarded = [StopCondition(OVERLOAD, overloaded), *stop]
+        return super().execute(device, command, args, guarded, budget)
