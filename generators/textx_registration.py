@@ -1,42 +1,56 @@
 """textX generator registrations, so that ``textx generate model.lr --target sfc|dot`` works.
 
-textX hands over one parsed file; the workbench checks it with its folder's model path and
-runs the LightRocks generator of the same name, writing next to the model or to
-``output_path``.
+textX hands over one parsed file; the workbench checks it with its model path (its package
+root, ``--path DIR`` and ``LIGHTROCKS_PATH``) and runs the LightRocks generator of the same
+name, writing next to the model or to ``output_path``. Every problem is a ``TextXError``,
+which textX reports in one line with exit code 1. Options a generator does not take
+(``--render`` for ``sfc``) are refused by textX from the parameters declared here.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
-from textx import generator
+from textx import TextXError, generator
+from textx.registration import GeneratorParam
 
-from lightrocks.workbench.check import check
+from lightrocks.workbench import report
+from lightrocks.workbench.check import all_cocos, check
 from lightrocks.workbench.generators import (
     GenerationError,
     GenerationRequest,
     load_generator,
+    run_generator,
     write_all,
 )
+from lightrocks.workbench.textx_check import model_path
+
+PATH = GeneratorParam("path", "model-path folders of imported packages", mandatory=False)
+RENDER = GeneratorParam("render", "also draw each .dot file: svg or png", mandatory=False)
+DEPTH = GeneratorParam("depth", "draw imported statecharts N levels deep", mandatory=False)
 
 
-def _run(target: str, model, output_path: str | None) -> None:
+def _run(target: str, model: Any, output_path: str | None, options: dict[str, Any]) -> None:
     file = Path(model._tx_filename).resolve()
-    context = check([file])
+    context = check([file], model_path(str(options.pop("path", ""))))
     if context.diagnostics.has_errors:
-        raise GenerationError("\n".join(str(d) for d in context.diagnostics.items))
-    request = GenerationRequest(context, [file])
+        raise TextXError(report.text(context.diagnostics.items, all_cocos()))
+    request = GenerationRequest(context, [file], {k: str(v) for k, v in options.items()})
     output = Path(output_path) if output_path else file.parent
-    write_all(output, load_generator(target).generate(request))
+    try:
+        write_all(output, run_generator(load_generator(target), request))
+    except GenerationError as error:
+        raise TextXError(str(error)) from None
 
 
-@generator("lightrocks", "sfc")
+@generator("lightrocks", "sfc", [PATH])
 def sfc_generator(metamodel, model, output_path, overwrite, debug, **custom_args):
     """IEC 61131-3 textual SFC of a LightRocks task or skill."""
-    _run("sfc", model, output_path)
+    _run("sfc", model, output_path, custom_args)
 
 
-@generator("lightrocks", "dot")
+@generator("lightrocks", "dot", [PATH, RENDER, DEPTH])
 def dot_generator(metamodel, model, output_path, overwrite, debug, **custom_args):
-    """Graphviz DOT of a LightRocks statechart."""
-    _run("dot", model, output_path)
+    """Graphviz DOT of a LightRocks statechart (``--render svg|png``, ``--depth N``)."""
+    _run("dot", model, output_path, custom_args)

@@ -67,13 +67,16 @@ def compose(root: Path, *fragments: str, extensions: Iterable[GrammarExtension] 
     return "\n".join(parts)
 
 
-@cache
-def textx_metamodel(
+def build_metamodel(
     root: Path, fragments: tuple[str, ...], extensions: tuple[GrammarExtension, ...] = ()
 ):
-    """The textX metamodel of a composed grammar, built once per process."""
+    """A new textX metamodel of a composed grammar."""
     text = compose(root, *fragments, extensions=extensions)
     return metamodel_from_str(text, autokwd=True, skipws=True)
+
+
+textx_metamodel = cache(build_metamodel)
+"""The textX metamodel the parsers use, built once per process."""
 
 
 def parse(

@@ -9,6 +9,7 @@ forking the generator (MontiCore's template path).
 
 from __future__ import annotations
 
+import traceback
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
@@ -60,6 +61,26 @@ def load_generator(name: str) -> Generator:
         return found[0].load()
     except (ImportError, AttributeError) as error:
         raise GenerationError(f"target '{name}' cannot be loaded: {error}") from None
+
+
+def run_generator(generator: Generator, request: GenerationRequest) -> dict[str, str | bytes]:
+    """The generator's files; a template that fails is reported with its file and line."""
+    try:
+        return generator.generate(request)
+    except jinja2.TemplateError as error:
+        raise GenerationError(_template_problem(error)) from None
+
+
+def _template_problem(error: jinja2.TemplateError) -> str:
+    if isinstance(error, jinja2.TemplateSyntaxError):
+        where = f"{error.filename or error.name}:{error.lineno}"
+    elif isinstance(error, jinja2.TemplateNotFound):
+        return f"template '{error.name}' not found"
+    else:  # jinja shows the template lines as frames of the traceback
+        frames = traceback.extract_tb(error.__traceback__)
+        lines = [f"{f.filename}:{f.lineno}" for f in frames if f.filename.endswith(".jinja")]
+        where = lines[-1] if lines else "template"
+    return f"{where}: {error.message}"
 
 
 def template_environment(

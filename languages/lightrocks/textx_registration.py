@@ -1,11 +1,17 @@
-"""Registration with textX's language registry, so that ``textx check`` knows ``.lr`` files."""
+"""Registration with textX's language registry, so that ``textx check`` knows ``.lr`` files
+and runs the CoCos on them (see :mod:`workbench.textx_check`)."""
+
+from functools import cache
 
 from textx import language
 
-from lightrocks.languages.lightrocks.syntax import metamodel
+from lightrocks.languages.lightrocks.syntax import FRAGMENTS, GRAMMAR, grammar_extensions
+from lightrocks.metamodel.grammar import build_metamodel
+from lightrocks.workbench.textx_check import with_cocos
 
 
 @language("lightrocks", "*.lr")
+@cache
 def lightrocks_language():
     """LightRocks action components as UML/P statecharts."""
-    return metamodel()
+    return with_cocos(build_metamodel(GRAMMAR, FRAGMENTS, grammar_extensions()))

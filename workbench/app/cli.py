@@ -22,6 +22,7 @@ from lightrocks.workbench.generators import (
     GenerationError,
     GenerationRequest,
     load_generator,
+    run_generator,
     write_all,
 )
 from lightrocks.workbench.languages import extensions, language_for, languages
@@ -182,7 +183,7 @@ def cmd_generate(args: argparse.Namespace) -> int:
     files = [f.resolve() for p in paths for f in model_files(p, extensions())]
     request = GenerationRequest(context, files, options, templates)
     try:
-        written = write_all(Path(args.output), generator.generate(request))
+        written = write_all(Path(args.output), run_generator(generator, request))
     except GenerationError as error:
         print(f"lightrocks: error: {report.printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS

@@ -23,7 +23,7 @@ from lightrocks.workbench import report
 from lightrocks.workbench.app import cache
 from lightrocks.workbench.app.errors import ModelError, RunError
 from lightrocks.workbench.check import CheckContext, all_cocos, check
-from lightrocks.workbench.generators import GenerationRequest
+from lightrocks.workbench.generators import GenerationRequest, run_generator
 
 cache_root = cache.cache_root
 
@@ -41,7 +41,7 @@ def generated_package(context: CheckContext, files: list[Path], root: Path) -> M
     name = f"lightrocks_{key}"
     if name not in sys.modules:
         folder = cache.entry(
-            root, key, lambda: GENERATOR.generate(GenerationRequest(context, files))
+            root, key, lambda: run_generator(GENERATOR, GenerationRequest(context, files))
         )
         _import_all(name, folder)
     return sys.modules[name]
