@@ -10,7 +10,7 @@ it. The extended language composes them when it builds its parser.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cache
 from importlib.metadata import entry_points
 from pathlib import Path
@@ -27,6 +27,8 @@ Print = Callable[[Any, Any], None]
 
 @dataclass(frozen=True)
 class LanguageExtension:
+    """Syntax added to the language ``extends``; ``printers`` names its AST node types."""
+
     name: str
     extends: str
     grammar: GrammarExtension
@@ -36,10 +38,6 @@ class LanguageExtension:
     templates: Path | None = None
     """Folder of generator templates: ``<target>/<node type>.jinja`` renders that node."""
     description: str = ""
-    node_types: tuple[type, ...] = field(init=False)
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "node_types", tuple(self.printers))
 
 
 @cache
@@ -55,7 +53,7 @@ def extensions_of(language: str) -> tuple[LanguageExtension, ...]:
 
 def extension_of(node: Any) -> LanguageExtension | None:
     """The extension whose AST node ``node`` is, or None for a node of the base language."""
-    return next((e for e in language_extensions() if isinstance(node, e.node_types)), None)
+    return next((e for e in language_extensions() if type(node) in e.printers), None)
 
 
 def template_name(target: str, node: Any) -> str:
