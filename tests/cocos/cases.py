@@ -628,3 +628,8 @@ def materialize(root, files: dict[str, str | bytes]) -> tuple[str, int, int] | N
             content = content.replace(MARK, "", 1)
         path.write_text(content, encoding="utf-8")
     return marked
+
+
+from cocos.cases_safety import SAFETY_CASES  # noqa: E402  (its models build on the ones above)
+
+CASES += SAFETY_CASES

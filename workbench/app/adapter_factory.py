@@ -43,7 +43,12 @@ def adapter_options(
 
 
 def adapter_for(name: str, scene: str | None, **options: Any) -> Any:
-    return adapter_factory(name)(scene=scene, **options)
+    """The adapter on the model's scene; adapters reject an unknown scene with ValueError."""
+    factory = adapter_factory(name)
+    try:
+        return factory(scene=scene, **options)
+    except ValueError as error:
+        raise RunError(f"adapter '{name}': {error}") from None
 
 
 def scene_of(cls: type) -> str | None:

@@ -9,6 +9,7 @@ from collections.abc import Callable, Sequence
 from importlib.metadata import version
 from pathlib import Path
 
+import jinja2
 from rich.console import Console
 
 from lightrocks.metamodel.ast import Position
@@ -25,6 +26,7 @@ from lightrocks.workbench.generators import (
 )
 from lightrocks.workbench.languages import extensions, language_for, languages
 from lightrocks.workbench.modelpath import model_files
+from lightrocks.workbench.workspace import TOO_DEEP, deepest
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
 
@@ -100,6 +102,9 @@ def cmd_fmt(args: argparse.Namespace) -> int:
         language = language_for(file.suffix)
         if language is None:
             raise UsageError(f"not a model file: {file}")
+        if not file.is_file():
+            diagnostics.error(Position(str(file), 1, 1), "LR0004", "not a regular file")
+            continue
         try:
             original[file] = file.read_text(encoding="utf-8")
             formatted[file] = language.format(original[file], str(file))
@@ -107,6 +112,8 @@ def cmd_fmt(args: argparse.Namespace) -> int:
             diagnostics.error(
                 Position(str(file), problem.line, problem.column), "LR0001", problem.message
             )
+        except RecursionError:
+            diagnostics.error(deepest(original[file], str(file)), "LR0001", TOO_DEEP)
         except (UnicodeDecodeError, ValueError):
             diagnostics.error(Position(str(file), 1, 1), "LR0002", "not a text file")
     if diagnostics.has_errors:
@@ -159,8 +166,17 @@ def cmd_generate(args: argparse.Namespace) -> int:
     except GenerationError as error:
         print(f"lightrocks: error: {error}", file=sys.stderr)
         return EXIT_FINDINGS
+    except jinja2.TemplateError as error:
+        raise UsageError(f"template {_template_place(error)}: {error.message}") from None
     print(f"{len(written)} file(s) written to {args.output}")
     return EXIT_OK
+
+
+def _template_place(error: jinja2.TemplateError) -> str:
+    """File and line of a template mistake when jinja2 knows them."""
+    name = getattr(error, "filename", None) or getattr(error, "name", None) or "?"
+    line = getattr(error, "lineno", None)
+    return f"{name}:{line}" if line else name
 
 
 def _option(text: str) -> tuple[str, str]:
@@ -210,10 +226,12 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.seeds import run_seeds
 
     model = existing_paths([args.model])[0].resolve()
+    if not model.is_file() or model.suffix != ".lr":
+        raise UsageError(f"run needs a statechart file (.lr), not {args.model}")
     search_path = existing_paths(args.path)
     trace = Path(args.trace) if args.trace else None
-    if trace is not None and not trace.parent.is_dir():
-        raise UsageError(f"--trace: no such folder: {trace.parent}")
+    if trace is not None:
+        _writable_file("--trace", trace)
     events = [e.strip() for e in args.events.split(",") if e.strip()]
     if args.seeds is not None and args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
@@ -261,6 +279,19 @@ def cmd_run(args: argparse.Namespace) -> int:
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
+    except OSError as error:
+        raise UsageError(f"cannot write {error.filename or 'output'}: {error.strerror}") from None
+
+
+def _writable_file(option: str, path: Path) -> None:
+    """A file the run may (over)write: never a folder, FIFO or device, which would fail late
+    or block the run."""
+    if path.exists() and not path.is_file():
+        raise UsageError(f"{option}: {path} is not a regular file")
+    if not path.parent.is_dir():
+        raise UsageError(f"{option}: no such folder: {path.parent}")
+    if not os.access(path.parent, os.W_OK):
+        raise UsageError(f"{option}: cannot write to folder {path.parent}")
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:
@@ -302,7 +333,7 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    console = Console(stderr=True, highlight=False)
+    console = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
     try:
         return COMMANDS[args.command][1](args)
     except UsageError as error:

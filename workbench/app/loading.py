@@ -19,8 +19,11 @@ from types import ModuleType
 from lightrocks.generators.python import GENERATOR
 from lightrocks.generators.python.generator import module_path
 from lightrocks.generators.python.names import identifier
+from lightrocks.languages.domain.types import UNKNOWN, Type
+from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench import report
 from lightrocks.workbench.app.errors import ModelError
+from lightrocks.workbench.app.values import DECLARED_TYPES
 from lightrocks.workbench.check import CheckContext, all_cocos, check
 from lightrocks.workbench.generators import GenerationRequest, write_all
 
@@ -70,4 +73,19 @@ def load_component(model: Path, search_path: Sequence[Path]) -> type:
     unit = next(u.unit for u in context.workspace.loaded_units() if u.path == model.resolve())
     name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
     package = generated_package(context, [model.resolve()], cache_root())
-    return component_class(package, name)
+    cls = component_class(package, name)
+    setattr(cls, DECLARED_TYPES, declared_types(context, name))
+    return cls
+
+
+def declared_types(context: CheckContext, qualified_name: str) -> dict[str, Type]:
+    """The declared type of every parameter of a checked statechart, for run values."""
+    found = analysis(context)
+    component = found.models.component(qualified_name)
+    if component is None:
+        return {}
+    region = component.region
+    return {
+        name: found.typing.types.resolve(region.loaded, parameter.type) or UNKNOWN
+        for name, parameter in region.parameters.items()
+    }

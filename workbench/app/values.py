@@ -3,9 +3,20 @@ language's own literal syntax so that units and signs mean what they mean in a m
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import math
+from collections.abc import Mapping, Sequence
 from typing import Any
 
+from lightrocks.languages.domain.types import (
+    BOOLEAN,
+    STRING,
+    QuantityT,
+    Type,
+    VectorT,
+    compatible,
+    describe,
+    quantity_of,
+)
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
@@ -36,14 +47,23 @@ def _dimension(quantity: ast.Quantity) -> Dimension:
         raise RunError(f"'{quantity.text}': {error}{hint}") from None
 
 
-def parse_value(text: str) -> Any:
-    """A ``--param`` value as a LightRocks literal: ``12mm``, ``0.32 Nm``, ``true``, ``"a"``."""
+def _finite(text: str, number: float) -> float:
+    if not math.isfinite(number):
+        raise RunError(f"'{text}' is not a finite number")
+    return number
+
+
+def parse_value(text: str, expected: Type | None = None) -> Any:
+    """A ``--param`` value as a LightRocks literal: ``12mm``, ``0.32 Nm``, ``true``, ``"a"``;
+    checked against the declared type when it is known, so ``depth=20`` is not 20 m."""
     value = _literal(text)
+    if expected is not None:
+        _check_type(text, value, expected)
     negative = isinstance(value, ast.Unary) and value.operator == "-"
     literal = value.operand if negative else value
     if isinstance(literal, ast.Quantity):
         _dimension(literal)
-        number = -literal.value if negative else literal.value
+        number = _finite(text, -literal.value if negative else literal.value)
         plain = not literal.unit and not any(c in literal.text for c in ".eE")
         return int(number) if plain and float(number).is_integer() else float(number)
     if isinstance(literal, ast.BooleanLiteral | ast.StringLiteral) and not negative:
@@ -52,8 +72,52 @@ def parse_value(text: str) -> Any:
         for element in literal.elements:
             if isinstance(element, ast.Quantity):
                 _dimension(element)
-        return tuple(e.value for e in literal.elements if isinstance(e, ast.Quantity))
+        numbers = [_element(text, e) for e in literal.elements]
+        return tuple(_finite(text, n) for n in numbers)
     raise RunError(f"'{text}' is not a literal value")
+
+
+def _element(text: str, element: Any) -> float:
+    """Vector elements are numbers (optionally negated): a run value has no nesting."""
+    negative = isinstance(element, ast.Unary) and element.operator == "-"
+    literal = element.operand if negative else element
+    if not isinstance(literal, ast.Quantity):
+        raise RunError(f"'{text}': vector elements must be numbers")
+    return -literal.value if negative else literal.value
+
+
+def _type_of(value: Any) -> Type | None:
+    """The type of a literal as the checker sees it; None for anything but a literal."""
+    if isinstance(value, ast.Unary) and value.operator == "-":
+        value = value.operand
+    if isinstance(value, ast.Quantity):
+        return quantity_of(value)
+    if isinstance(value, ast.BooleanLiteral):
+        return BOOLEAN
+    if isinstance(value, ast.StringLiteral):
+        return STRING
+    if isinstance(value, ast.VectorLiteral):
+        elements = tuple(_type_of(e) for e in value.elements)
+        return None if None in elements else VectorT("vector", elements)
+    return None
+
+
+def _check_type(text: str, value: Any, expected: Type) -> None:
+    actual = _type_of(value)
+    wanted = describe(expected)
+    if isinstance(expected, QuantityT) and not expected.dimension.dimensionless:
+        wanted += " with its unit"
+    if actual is None or not compatible(expected, actual):
+        given = "an expression" if actual is None else describe(actual)
+        raise RunError(f"expects {wanted}; given '{text}' ({given})")
+    if expected.name == "Integer" and not float(_literal_number(value)).is_integer():
+        raise RunError(f"expects Integer; given '{text}'")
+
+
+def _literal_number(value: Any) -> float:
+    negative = isinstance(value, ast.Unary)
+    number = (value.operand if negative else value).value
+    return -number if negative else number
 
 
 def parse_noise(text: str) -> Noise:
@@ -67,14 +131,22 @@ def parse_noise(text: str) -> Noise:
         literal = _literal(part.strip())
         if not isinstance(literal, ast.Quantity) or _dimension(literal) != dimension:
             raise RunError(usage)
+        if not math.isfinite(literal.value):
+            raise RunError(f"--perception-noise '{text}': a sigma must be a finite number")
         if literal.value < 0:
             raise RunError(f"--perception-noise '{text}': a sigma cannot be negative")
         sigmas.append(literal.value)
     return sigmas[0], sigmas[1]
 
 
+DECLARED_TYPES = "DECLARED_TYPES"
+"""Class attribute set by loading: model parameter name -> its declared :class:`Type`."""
+
+
 def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
-    """``name=value`` pairs to Python attributes of the component, checked by name."""
+    """``name=value`` pairs to Python attributes of the component, checked by name and,
+    when the class was loaded from its model, by declared type, dimension and finiteness."""
+    declared: Mapping[str, Type] = getattr(cls, DECLARED_TYPES, {})
     bound = {}
     for item in given:
         name, separator, text = item.partition("=")
@@ -83,5 +155,9 @@ def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
         if name.strip() not in cls.PARAMETERS:
             known = ", ".join(cls.PARAMETERS) or "none"
             raise RunError(f"{cls.NAME} has no parameter '{name.strip()}'; parameters: {known}")
-        bound[cls.PARAMETERS[name.strip()]] = parse_value(text.strip())
+        key = name.strip()
+        try:
+            bound[cls.PARAMETERS[key]] = parse_value(text.strip(), declared.get(key))
+        except RunError as error:
+            raise RunError(f"parameter '{key}': {error}") from None
     return bound
