@@ -169,8 +169,18 @@ class Workspace:
         if imported.wildcard:
             symbols = self.load_package(imported.name)
             if not symbols:
+                parent, _, last = imported.name.rpartition(".")
+                siblings = {
+                    child.name
+                    for folder in self.model_path.package_folders(parent)
+                    for child in folder.iterdir()
+                    if child.is_dir()
+                }
                 self.diagnostics.error(
-                    imported.position, "LR0102", f"package '{imported.name}' not found"
+                    imported.position,
+                    "LR0102",
+                    f"package '{imported.name}' not found",
+                    did_you_mean(last, siblings),
                 )
             return symbols
         symbol = self.lookup(imported.name)

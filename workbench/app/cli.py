@@ -16,7 +16,7 @@ from lightrocks.metamodel.ast import Position
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import report
 from lightrocks.workbench.check import all_cocos, check
-from lightrocks.workbench.diagnostics import Diagnostics
+from lightrocks.workbench.diagnostics import Diagnostics, Severity
 from lightrocks.workbench.files import write_atomic
 from lightrocks.workbench.generators import (
     GenerationError,
@@ -72,6 +72,9 @@ def _configure_check(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("paths", nargs="+", help="model files or folders")
     _path_option(parser)
     parser.add_argument("--format", choices=sorted(report.FORMATS), default="text")
+    parser.add_argument(
+        "--strict", action="store_true", help="warnings fail the check too (exit 1), for CI"
+    )
 
 
 @command(_configure_check)
@@ -81,7 +84,9 @@ def cmd_check(args: argparse.Namespace) -> int:
     output = report.FORMATS[args.format](findings, all_cocos())
     if output:
         print(output)
-    return EXIT_FINDINGS if context.diagnostics.has_errors else EXIT_OK
+    warned = any(d.severity is Severity.WARNING for d in findings)
+    failed = context.diagnostics.has_errors or (args.strict and warned)
+    return EXIT_FINDINGS if failed else EXIT_OK
 
 
 def _configure_fmt(sub: argparse._SubParsersAction) -> None:
