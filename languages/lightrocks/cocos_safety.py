@@ -216,12 +216,12 @@ class _Limits:
                     declared = parameters.get(name)
                     if declared is None or (declared.low is None and declared.high is None):
                         continue
-                    element = (name, _constants(declared.low), _constants(declared.high))
+                    element = (name, constant_values(declared.low), constant_values(declared.high))
                     yield owner.name, command, element, argument.value
 
 
 def _check(value: ast.Expression, limit: Limit, what: str) -> Iterator[Finding]:
-    numbers = _constants(value)
+    numbers = constant_values(value)
     if numbers is not None and limit.violated_by(numbers):
         yield (
             value.position,
@@ -230,21 +230,21 @@ def _check(value: ast.Expression, limit: Limit, what: str) -> Iterator[Finding]:
         )
 
 
-def _constants(expression: ast.Expression | None) -> list[float] | None:
+def constant_values(expression: ast.Expression | None) -> list[float] | None:
     """The numbers of a constant expression (literals, signs, + - * /, vectors); None else."""
     match expression:
         case ast.Quantity():
             return [expression.value]
         case ast.Unary(operator="-"):
-            inner = _constants(expression.operand)
+            inner = constant_values(expression.operand)
             return None if inner is None else [-n for n in inner]
         case ast.VectorLiteral():
-            parts = [_constants(e) for e in expression.elements]
+            parts = [constant_values(e) for e in expression.elements]
             if any(p is None or len(p) != 1 for p in parts):
                 return None
             return [p[0] for p in parts]
         case ast.Binary(operator=operator) if operator in "+-*/":
-            left, right = _constants(expression.left), _constants(expression.right)
+            left, right = constant_values(expression.left), constant_values(expression.right)
             if left is None or right is None or len(left) != 1 or len(right) != 1:
                 return None
             if operator == "/" and right[0] == 0:

@@ -142,6 +142,9 @@ def parse_noise(text: str) -> Noise:
 DECLARED_TYPES = "DECLARED_TYPES"
 """Class attribute set by loading: model parameter name -> its declared :class:`Type`."""
 
+SAFE_RANGES = "SAFE_RANGES"
+"""Class attribute set by loading: the devices' declared safe ranges, enforced at run time."""
+
 
 def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
     """``name=value`` pairs to Python attributes of the component, checked by name and,
