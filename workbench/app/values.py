@@ -4,19 +4,9 @@ language's own literal syntax so that units and signs mean what they mean in a m
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from typing import Any
 
-from lightrocks.languages.domain.types import (
-    BOOLEAN,
-    STRING,
-    QuantityT,
-    Type,
-    VectorT,
-    compatible,
-    describe,
-    quantity_of,
-)
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
@@ -47,77 +37,120 @@ def _dimension(quantity: ast.Quantity) -> Dimension:
         raise RunError(f"'{quantity.text}': {error}{hint}") from None
 
 
-def _finite(text: str, number: float) -> float:
-    if not math.isfinite(number):
-        raise RunError(f"'{text}' is not a finite number")
-    return number
-
-
-def parse_value(text: str, expected: Type | None = None) -> Any:
-    """A ``--param`` value as a LightRocks literal: ``12mm``, ``0.32 Nm``, ``true``, ``"a"``;
-    checked against the declared type when it is known, so ``depth=20`` is not 20 m."""
+def parse_value(text: str) -> Any:
+    """A ``--param`` value as a LightRocks literal: ``12mm``, ``0.32 Nm``, ``true``, ``"a"``."""
     value = _literal(text)
-    if expected is not None:
-        _check_type(text, value, expected)
     negative = isinstance(value, ast.Unary) and value.operator == "-"
     literal = value.operand if negative else value
     if isinstance(literal, ast.Quantity):
         _dimension(literal)
-        number = _finite(text, -literal.value if negative else literal.value)
-        plain = not literal.unit and not any(c in literal.text for c in ".eE")
-        return int(number) if plain and float(number).is_integer() else float(number)
+        number = -literal.value if negative else literal.value
+        return int(number) if _integral(literal) else float(number)
     if isinstance(literal, ast.BooleanLiteral | ast.StringLiteral) and not negative:
         return literal.value
     if isinstance(literal, ast.VectorLiteral) and not negative:
         for element in literal.elements:
             if isinstance(element, ast.Quantity):
                 _dimension(element)
-        numbers = [_element(text, e) for e in literal.elements]
-        return tuple(_finite(text, n) for n in numbers)
+        return tuple(e.value for e in literal.elements if isinstance(e, ast.Quantity))
     raise RunError(f"'{text}' is not a literal value")
 
 
-def _element(text: str, element: Any) -> float:
-    """Vector elements are numbers (optionally negated): a run value has no nesting."""
-    negative = isinstance(element, ast.Unary) and element.operator == "-"
-    literal = element.operand if negative else element
+def _integral(literal: ast.Quantity) -> bool:
+    plain = not literal.unit and not any(c in literal.text for c in ".eE")
+    return plain and float(literal.value).is_integer()
+
+
+def _expected(declared: tuple) -> str:
+    kind, name, dimensions = declared
+    if kind in ("quantity", "integer") and any(dimensions[0]):
+        return f"{name} [{Dimension(dimensions[0])}]"
+    if kind == "vector":
+        return f"{name}, {len(dimensions)} values"
+    return name
+
+
+def typed_value(name: str, text: str, declared: tuple) -> Any:
+    """``text`` read as a value of the declared parameter type, or a ``RunError`` naming the
+    parameter, what it expects and what was given: a quantity needs its unit, numbers must
+    be finite, an ``Integer`` whole, a vector complete."""
+    kind, _, dimensions = declared
+    wrong = RunError(
+        f"--param {name}={text}: {name} expects {_expected(declared)}, not {_describe(text)}"
+    )
+    if kind == "other":
+        raise RunError(f"--param {name}: a {declared[1]} cannot be given on the command line")
+    value = _literal(text)
+    if kind == "boolean":
+        if not isinstance(value, ast.BooleanLiteral):
+            raise wrong
+        return value.value
+    if kind == "string":
+        if not isinstance(value, ast.StringLiteral):
+            raise wrong
+        return value.value
+    if kind == "vector":
+        if not isinstance(value, ast.VectorLiteral) or len(value.elements) != len(dimensions):
+            raise wrong
+        return tuple(
+            _number(element, Dimension(d), wrong)
+            for element, d in zip(value.elements, dimensions, strict=True)
+        )
+    number = _number(value, Dimension(dimensions[0]), wrong)
+    if kind == "integer":
+        literal = value.operand if isinstance(value, ast.Unary) else value
+        if not _integral(literal):
+            raise wrong
+        return int(number)
+    return number
+
+
+def _number(value: ast.Expression, dimension: Dimension, wrong: RunError) -> float:
+    """An SI number of ``dimension`` from a (possibly negated) quantity literal."""
+    negative = isinstance(value, ast.Unary) and value.operator == "-"
+    literal = value.operand if negative else value
     if not isinstance(literal, ast.Quantity):
-        raise RunError(f"'{text}': vector elements must be numbers")
-    return -literal.value if negative else literal.value
+        raise wrong
+    if literal.unit:
+        if _dimension(literal) != dimension:
+            raise wrong
+    elif not dimension.dimensionless:
+        raise RunError(f"{wrong} (a quantity needs its unit)")
+    number = -literal.value if negative else literal.value
+    if not math.isfinite(number):
+        raise RunError(f"{wrong}: not a finite number")
+    return float(number)
 
 
-def _type_of(value: Any) -> Type | None:
-    """The type of a literal as the checker sees it; None for anything but a literal."""
-    if isinstance(value, ast.Unary) and value.operator == "-":
-        value = value.operand
-    if isinstance(value, ast.Quantity):
-        return quantity_of(value)
-    if isinstance(value, ast.BooleanLiteral):
-        return BOOLEAN
-    if isinstance(value, ast.StringLiteral):
-        return STRING
-    if isinstance(value, ast.VectorLiteral):
-        elements = tuple(_type_of(e) for e in value.elements)
-        return None if None in elements else VectorT("vector", elements)
-    return None
+def _describe(text: str) -> str:
+    try:
+        value = _literal(text)
+    except RunError:
+        return f"'{text}'"
+    literal = value.operand if isinstance(value, ast.Unary) else value
+    if isinstance(literal, ast.Quantity):
+        if not literal.unit:
+            return f"the plain number {text}"
+        try:
+            return f"{text} [{_dimension(literal)}]"
+        except RunError:
+            return f"'{text}'"
+    kinds = {
+        ast.BooleanLiteral: "a Boolean",
+        ast.StringLiteral: "a String",
+        ast.VectorLiteral: f"a vector of {len(getattr(literal, 'elements', ()))} values",
+    }
+    return f"{text} ({kinds.get(type(literal), 'an expression')})"
 
 
-def _check_type(text: str, value: Any, expected: Type) -> None:
-    actual = _type_of(value)
-    wanted = describe(expected)
-    if isinstance(expected, QuantityT) and not expected.dimension.dimensionless:
-        wanted += " with its unit"
-    if actual is None or not compatible(expected, actual):
-        given = "an expression" if actual is None else describe(actual)
-        raise RunError(f"expects {wanted}; given '{text}' ({given})")
-    if expected.name == "Integer" and not float(_literal_number(value)).is_integer():
-        raise RunError(f"expects Integer; given '{text}'")
-
-
-def _literal_number(value: Any) -> float:
-    negative = isinstance(value, ast.Unary)
-    number = (value.operand if negative else value).value
-    return -number if negative else number
+def parse_delay(text: str) -> float:
+    """``+500ms`` among ``--events``: how far to advance the virtual clock, in seconds."""
+    value = _literal(text.removeprefix("+"))
+    if not isinstance(value, ast.Quantity) or _dimension(value) != lookup("s").dimension:
+        raise RunError(f"'{text}' is not a time to wait: write it like +500ms")
+    if value.value < 0:
+        raise RunError(f"'{text}': time cannot go back")
+    return value.value
 
 
 def parse_noise(text: str) -> Noise:
@@ -131,25 +164,20 @@ def parse_noise(text: str) -> Noise:
         literal = _literal(part.strip())
         if not isinstance(literal, ast.Quantity) or _dimension(literal) != dimension:
             raise RunError(usage)
-        if not math.isfinite(literal.value):
-            raise RunError(f"--perception-noise '{text}': a sigma must be a finite number")
         if literal.value < 0:
             raise RunError(f"--perception-noise '{text}': a sigma cannot be negative")
+        if not math.isfinite(literal.value):
+            raise RunError(f"--perception-noise '{text}': a sigma must be a finite number")
         sigmas.append(literal.value)
     return sigmas[0], sigmas[1]
 
-
-DECLARED_TYPES = "DECLARED_TYPES"
-"""Class attribute set by loading: model parameter name -> its declared :class:`Type`."""
 
 SAFE_RANGES = "SAFE_RANGES"
 """Class attribute set by loading: the devices' declared safe ranges, enforced at run time."""
 
 
 def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
-    """``name=value`` pairs to Python attributes of the component, checked by name and,
-    when the class was loaded from its model, by declared type, dimension and finiteness."""
-    declared: Mapping[str, Type] = getattr(cls, DECLARED_TYPES, {})
+    """``name=value`` pairs to Python attributes of the component, checked by name."""
     bound = {}
     for item in given:
         name, separator, text = item.partition("=")
@@ -158,9 +186,8 @@ def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
         if name.strip() not in cls.PARAMETERS:
             known = ", ".join(cls.PARAMETERS) or "none"
             raise RunError(f"{cls.NAME} has no parameter '{name.strip()}'; parameters: {known}")
-        key = name.strip()
-        try:
-            bound[cls.PARAMETERS[key]] = parse_value(text.strip(), declared.get(key))
-        except RunError as error:
-            raise RunError(f"parameter '{key}': {error}") from None
+        name = name.strip()
+        declared = getattr(cls, "PARAMETER_TYPES", {}).get(name)
+        value = typed_value(name, text.strip(), declared) if declared else parse_value(text)
+        bound[cls.PARAMETERS[name]] = value
     return bound
