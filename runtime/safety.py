@@ -1,52 +1,76 @@
-"""Safe ranges enforced where a command leaves the runtime: a value only known at run time
-(a parameter given on the command line, a computed pose component) that lies outside the
-range the device declares is refused before the robot moves. The runtime turns the refusal
-into the outcome ``error`` with its origin and holds the devices."""
+"""Safe ranges enforced where a value leaves the runtime for a device: a command argument only
+known at run time (a run parameter, a computed value) outside the range its device declares
+is refused before anything moves. Generated classes carry the ranges as data, so every way of
+running them (command line, ``run_once``, ``--seeds``, plain Python) is held to them."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from lightrocks.runtime.contract import AdapterError, CommandResult, StopCondition
 
-Bounds = tuple[tuple[float, ...] | None, tuple[float, ...] | None]
-"""Lower and upper bound in SI, one number for every element or one per element."""
+@dataclass(frozen=True)
+class Bound:
+    """One element's bounds in SI, and the unit (with its SI factor) the model wrote them in."""
 
-Ranges = Mapping[str, Mapping[str, Mapping[str, Bounds]]]
-"""Device instance -> command -> argument -> its bounds."""
+    low: float | None
+    high: float | None
+    unit: str = ""
+    factor: float = 1.0
+
+    def holds(self, number: float) -> bool:
+        if math.isnan(number):
+            return False
+        return (self.low is None or number >= self.low) and (
+            self.high is None or number <= self.high
+        )
+
+    def show(self, number: float | None, unbounded: str = "") -> str:
+        if number is None:
+            return unbounded
+        return f"{number / self.factor:g} {self.unit}".rstrip()
+
+    def describe(self) -> str:
+        return f"{self.show(self.low, '-inf')} .. {self.show(self.high, 'inf')}"
 
 
-class UnsafeCommand(AdapterError):
-    """A command argument outside its declared safe range; the command was not sent."""
+@dataclass(frozen=True)
+class SafeRange:
+    """The safe range of ``device.command(argument)``: one bound for a scalar, one per element
+    (or one for all elements) for a vector."""
+
+    device: str
+    command: str
+    argument: str
+    bounds: tuple[Bound, ...]
+
+    def breach(self, value: Any) -> str | None:
+        """Which element of ``value`` lies outside, and by what; ``None`` when all are safe."""
+        numbers = _numbers(value)
+        if numbers is None:
+            return None
+        vector = len(numbers) > 1 or len(self.bounds) > 1
+        for index, number in enumerate(numbers):
+            bound = self.bounds[index] if index < len(self.bounds) else self.bounds[0]
+            if not bound.holds(number):
+                element = f"{self.argument}[{index}]" if vector else self.argument
+                return (
+                    f"{self.device}.{self.command}({element}) = {bound.show(number)} is outside "
+                    f"its safe range {bound.describe()}"
+                )
+        return None
 
 
-@dataclass
-class SafeRanges:
-    """An adapter that refuses commands with an argument outside its declared safe range."""
-
-    adapter: Any
-    ranges: Ranges
-
-    def execute(
-        self,
-        device: str,
-        command: str,
-        args: Mapping[str, Any],
-        stop: Sequence[StopCondition],
-        budget: float,
-    ) -> CommandResult:
-        for name, (low, high) in self.ranges.get(device, {}).get(command, {}).items():
-            if name in args:
-                _check(f"{device}.{command}({name})", args[name], low, high)
-        return self.adapter.execute(device, command, args, stop, budget)
-
-    def __getattr__(self, name: str) -> Any:
-        if name == "adapter":  # not yet set (copying, unpickling): no recursion
-            raise AttributeError(name)
-        return getattr(self.adapter, name)
+def refusal(ranges: Mapping[str, SafeRange], arguments: Mapping[str, Any]) -> str | None:
+    """Why a command with these arguments must not be sent; ``None`` when it may."""
+    for name, safe in ranges.items():
+        if name in arguments:
+            reason = safe.breach(arguments[name])
+            if reason is not None:
+                return f"refused: {reason}"
+    return None
 
 
 def _numbers(value: Any) -> list[float] | None:
@@ -54,35 +78,9 @@ def _numbers(value: Any) -> list[float] | None:
         return None
     if isinstance(value, int | float):
         return [float(value)]
-    array = getattr(value, "array", None)
-    values = array() if callable(array) else value
-    try:
-        return [float(v) for v in values]
-    except (TypeError, ValueError):
-        return None
-
-
-def _check(
-    where: str, value: Any, low: tuple[float, ...] | None, high: tuple[float, ...] | None
-) -> None:
-    numbers = _numbers(value)
-    if numbers is None:
-        return
-    for index, number in enumerate(numbers):
-        lo, hi = _pick(low, index), _pick(high, index)
-        if (
-            math.isnan(number)
-            or (lo is not None and number < lo)
-            or (hi is not None and number > hi)
-        ):
-            shown = "-inf" if not low else ", ".join(f"{v:g}" for v in low)
-            top = "inf" if not high else ", ".join(f"{v:g}" for v in high)
-            raise UnsafeCommand(
-                f"refused: {where} = {value!r} is outside the safe range [{shown}] .. [{top}]"
-            )
-
-
-def _pick(values: tuple[float, ...] | None, index: int) -> float | None:
-    if not values:
-        return None
-    return values[index] if len(values) > 1 and index < len(values) else values[0]
+    if isinstance(value, tuple | list):
+        try:
+            return [float(v) for v in value]
+        except (TypeError, ValueError):
+            return None
+    return None

@@ -472,7 +472,20 @@ CASES: list[Case] = [
         bad={
             "actions/Move.lr": replace(MOVE, "arm.move(x = x)", "arm.move(x = x, force = @@100 N)")
         },
-        message="value of 'force' is outside the safe range the device declares",
+        message="arm.move(force) = 100 N is outside its safe range 1 N .. 50 N",
+    ),
+    Case(
+        "LR0305",
+        ok={
+            "actions/Move.lr": replace(MOVE, "arm.move(x = x)", "arm.move(x = x, force = 2 * 20 N)")
+        },
+        bad={
+            "actions/Move.lr": replace(
+                MOVE, "arm.move(x = x)", "arm.move(x = x, force = @@2 * 40 N)"
+            )
+        },
+        message="arm.move(force) = 80 N is outside its safe range 1 N .. 50 N",
+        variant="expression",
     ),
     Case(
         "LR0306",

@@ -18,15 +18,10 @@ from types import ModuleType
 from lightrocks.generators.python import GENERATOR
 from lightrocks.generators.python.generator import module_path
 from lightrocks.generators.python.names import identifier
-from lightrocks.languages.domain.types import DeviceT
-from lightrocks.languages.lightrocks.analysis import analysis
-from lightrocks.languages.lightrocks.cocos_safety import constant_values
 from lightrocks.metamodel import ast
-from lightrocks.runtime.safety import Bounds, Ranges
 from lightrocks.workbench import report
 from lightrocks.workbench.app import cache
 from lightrocks.workbench.app.errors import ModelError, RunError
-from lightrocks.workbench.app.values import SAFE_RANGES
 from lightrocks.workbench.check import CheckContext, all_cocos, check
 from lightrocks.workbench.generators import GenerationRequest
 
@@ -94,27 +89,4 @@ def load_component(model: Path, search_path: Sequence[Path]) -> type:
     unit = units[0]
     name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
     package = generated_package(context, [model.resolve()], cache_root())
-    cls = component_class(package, name)
-    setattr(cls, SAFE_RANGES, safe_ranges(context, name))
-    return cls
-
-
-def safe_ranges(context: CheckContext, qualified_name: str) -> Ranges:
-    """Every constant safe range of the commands the statechart's devices offer."""
-    found = analysis(context)
-    component = found.models.component(qualified_name)
-    if component is None:
-        return {}
-    ranges: dict[str, dict[str, dict[str, Bounds]]] = {}
-    for name, kind in found.typing.environment(component.region).items():
-        if not isinstance(kind, DeviceT) or kind.device is None:
-            continue
-        for command in kind.device.commands:
-            for parameter in command.parameters:
-                low, high = constant_values(parameter.low), constant_values(parameter.high)
-                if low or high:
-                    bounds = (tuple(low) if low else None, tuple(high) if high else None)
-                    ranges.setdefault(name, {}).setdefault(command.name, {})[parameter.name] = (
-                        bounds
-                    )
-    return ranges
+    return component_class(package, name)

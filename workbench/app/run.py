@@ -10,11 +10,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from lightrocks.runtime.safety import SafeRanges
 from lightrocks.workbench.app.adapter_factory import adapter_for, adapter_options, scene_of
 from lightrocks.workbench.app.errors import RunError
 from lightrocks.workbench.app.loading import load_component
-from lightrocks.workbench.app.values import SAFE_RANGES, Noise, parameters, parse_delay
+from lightrocks.workbench.app.values import Noise, parameters, parse_delay
 
 
 def success_outcome(cls: type, chosen: str | None = None) -> str | None:
@@ -140,8 +139,6 @@ def run_component(
     values = parameters(cls, params)
     options = adapter_options(adapter, seed, noise, video)
     device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
-    if device is not None:
-        device = SafeRanges(device, getattr(cls, SAFE_RANGES, {}))
     try:
         chart = drive(cls, values, device, events, trace, progress)
         measure = getattr(device, "measurements", None)
