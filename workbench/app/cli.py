@@ -246,6 +246,11 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--video", metavar="FILE", help="record a video (.mp4) or PNG frames")
     parser.add_argument(
+        "--script",
+        metavar="FILE",
+        help="JSON file of scripted outcomes and sensor values for the dry run",
+    )
+    parser.add_argument(
         "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
     )
     _path_option(parser)
@@ -260,11 +265,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.errors import ModelError, RunError
     from lightrocks.workbench.app.loading import load_component
     from lightrocks.workbench.app.run import run_component, success_outcome
+    from lightrocks.workbench.app.script import read_script
     from lightrocks.workbench.app.seeds import run_seeds
 
     model = statechart_file(args.model)
     search_path = existing_paths(args.path)
     trace = trace_file(args.trace)
+    script_file = existing_paths([args.script])[0] if args.script else None
     events = [e.strip() for e in args.events.split(",") if e.strip()]
     if args.seeds is not None and args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
@@ -277,7 +284,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         cls = load_component(model, search_path)
         wanted = success_outcome(cls, args.success)
         values.parameters(cls, args.param)
-        adapter_options(args.adapter, args.seed, noise, args.video)
+        script = read_script(script_file, cls) if script_file else None
+        adapter_options(args.adapter, args.seed, noise, args.video, script)
         if args.seeds is not None:
             seeds = range(args.seed, args.seed + args.seeds)
             many = partial(
@@ -292,6 +300,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 events=events,
                 success=args.success,
                 workers=args.workers,
+                script=script,
             )
             return display.show_seeds(cls.NAME, wanted, len(seeds), many)
         single = partial(
@@ -305,6 +314,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             args.video,
             events=events,
             success=args.success,
+            script=script,
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
