@@ -3,11 +3,14 @@
 
 from __future__ import annotations
 
+import errno
+import io
 import os
 from pathlib import Path
 
 import pytest
 
+import lightrocks.runtime.trace as trace_module
 from lightrocks.workbench.app.cli import main
 from lightrocks.workbench.check import check
 
@@ -121,3 +124,22 @@ def test_the_check_api_reads_no_fifo_or_device(kind: str, message: str, tmp_path
     context = check([target], [])
     [finding] = context.diagnostics.items
     assert (finding.code, finding.message) == ("LR0004", message)
+
+
+class _FullDisk(io.StringIO):
+    def write(self, text: str) -> int:
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+
+def test_trace_on_a_full_disk(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The disk fills up during the run: the run is not stopped half-way by its record, and
+    ends in a usage error naming the file; no cut-off trace is left behind."""
+    trace = tmp_path / "t.jsonl"
+    trace.write_text("", encoding="utf-8")
+    monkeypatch.setattr(trace_module, "open", lambda *_, **__: _FullDisk(), raising=False)
+    status, output = run(capsys, str(SCREW_TASK), "--adapter", "dryrun", "--trace", str(trace))
+    assert status == 2
+    assert f"--trace: cannot write {trace}: No space left on device" in " ".join(output.split())
+    assert not trace.exists()

@@ -103,6 +103,10 @@ def drive(
                 chart.advance(step)
     finally:
         recorder.close()
+    if recorder.failure is not None:
+        trace.unlink(missing_ok=True)  # never leave a cut-off trace behind
+        reason = recorder.failure.strerror or recorder.failure
+        raise RunError(f"--trace: cannot write {trace}: {reason} (the run went on without it)")
     return chart
 
 
