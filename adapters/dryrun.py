@@ -40,8 +40,8 @@ class DryRunAdapter:
 
     ``outcomes`` scripts outcomes per command, ``{"gripper.close": ["empty", "holding"]}``:
     the next one ends the next call of that command once it has run (``"error"`` raises an
-    adapter fault, ``"timeout"`` spends the budget); a call that a stop condition ends first
-    (a preemption, an event) leaves it for the following call;
+    adapter fault, ``"timeout"`` spends the budget); a call that another stop condition ends
+    first (a preemption, an event) leaves it for the following call;
     ``sensors`` overrides sensor values, ``{"robot.wrench": Wrench(...)}`` or a function of
     the time. ``calls`` and ``holds`` record what the runtime asked for.
     """
@@ -148,6 +148,8 @@ class DryRunAdapter:
                 snapshot = self.snapshot()
                 for condition in stop:
                     if condition.holds(snapshot):
+                        if condition.name == planned:  # it ended as scripted: used
+                            scripted.pop(0)
                         return CommandResult(condition.name, value)
                 if elapsed >= budget - 1e-9:
                     return CommandResult(TIMEOUT)

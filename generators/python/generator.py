@@ -20,6 +20,7 @@ from pathlib import Path
 from lightrocks.generators.python import expressions as code
 from lightrocks.generators.python.expressions import CompileError, Scope
 from lightrocks.generators.python.names import alias, identifier, nested
+from lightrocks.languages.domain.ranges import Range, command_ranges
 from lightrocks.languages.domain.types import (
     BOOLEAN,
     FRAME,
@@ -33,7 +34,7 @@ from lightrocks.languages.domain.types import (
 )
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
-from lightrocks.languages.lightrocks.ranges import Flows, Range, command_ranges
+from lightrocks.languages.lightrocks.ranges import Flows
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup

@@ -7,9 +7,10 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
+from lightrocks.languages.domain.ranges import Range
 from lightrocks.languages.lightrocks.analysis import Analysis, analysis
 from lightrocks.languages.lightrocks.model import Component, Region
-from lightrocks.languages.lightrocks.ranges import Flows, Range
+from lightrocks.languages.lightrocks.ranges import Flows
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import TIME, UnitError, lookup
 from lightrocks.workbench.cocos import coco

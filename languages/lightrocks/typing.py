@@ -12,6 +12,7 @@ from collections import defaultdict
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from lightrocks.languages.domain.ranges import Range, command_ranges
 from lightrocks.languages.domain.types import (
     ANGLE_T,
     BOOLEAN,
@@ -36,7 +37,6 @@ from lightrocks.languages.domain.types import (
     quantity_of,
 )
 from lightrocks.languages.lightrocks.model import Component, ModelSet, Region
-from lightrocks.languages.lightrocks.ranges import Range, command_ranges
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import ONE, UnitError, lookup
 from lightrocks.workbench.diagnostics import did_you_mean

@@ -216,3 +216,11 @@ def test_a_script_holds_for_every_seed(pick: Path, capsys: pytest.CaptureFixture
     main(_run(pick, {"outcomes": {"arm.move": ["blocked", "blocked"]}}, "--seeds", "2"))
     out = capsys.readouterr().out
     assert "success (picked): 0/2" in out
+
+
+def test_a_call_that_ends_as_scripted_by_itself_uses_the_script_up() -> None:
+    adapter = _adapter(outcomes={"robot.moveCartesian": ["clicked", "blocked"]})
+    goal = {"goal": pin.SE3.Identity()}
+    clicked = StopCondition("clicked", lambda s: True)
+    assert adapter.execute("robot", "moveCartesian", goal, [clicked], 1.0).outcome == "clicked"
+    assert adapter.execute("robot", "moveCartesian", goal, [REACHED], 1.0).outcome == "blocked"

@@ -577,6 +577,16 @@ import actions.*;
 # More failing models for codes with several distinct ways to fail.
 CASES += [
     Case(
+        "LR0405",
+        ok={},
+        bad={
+            "robots/Devices.lrd": replace(
+                DEVICES, "Force force = 10 N in", "Force force = @@100 N in"
+            )
+        },
+        message="default Arm.move(force) = 100 N is outside its safe range 1 N .. 50 N",
+    ),
+    Case(
         "LR0104",
         variant="with-arguments",  # no second finding about the arguments of an unresolved state
         ok={},
