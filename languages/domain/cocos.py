@@ -92,44 +92,39 @@ def type_units_known(context: object) -> Iterator[Finding]:
                     yield declaration.position, f"unknown unit '{unit}'", hint
 
 
+def _commands(context: object) -> Iterator[tuple[Loaded, ast.Device, ast.Command]]:
+    for loaded in _domain_units(context):
+        for declaration in loaded.unit.declarations:
+            if isinstance(declaration, ast.Device):
+                for command in declaration.commands:
+                    yield loaded, declaration, command
+
+
 @coco("LR0404", Severity.ERROR, "command defaults and safe ranges fit the parameter type")
 def command_defaults_fit(context: object) -> Iterator[Finding]:
     types = _types(context)
-    for loaded in _domain_units(context):
-        for declaration in loaded.unit.declarations:
-            if not isinstance(declaration, ast.Device):
+    for loaded, _, command in _commands(context):
+        for parameter in command.parameters:
+            declared = types.resolve(loaded, parameter.type)
+            if not isinstance(declared, QuantityT | VectorT):
                 continue
-            for command in declaration.commands:
-                for parameter in command.parameters:
-                    declared = types.resolve(loaded, parameter.type)
-                    if not isinstance(declared, QuantityT | VectorT):
-                        continue
-                    values = (parameter.default, parameter.low, parameter.high)
-                    for value in values:
-                        actual = _literal_type(value)
-                        if actual is not None and not _fits(declared, actual):
-                            yield (
-                                value.position,
-                                f"'{parameter.name}' expects {describe(declared)}",
-                                "",
-                            )
+            for value in (parameter.default, parameter.low, parameter.high):
+                actual = _literal_type(value)
+                if actual is not None and not _fits(declared, actual):
+                    yield value.position, f"'{parameter.name}' expects {describe(declared)}", ""
 
 
 @coco("LR0405", Severity.ERROR, "a command default lies in the command's own safe range")
 def command_defaults_safe(context: object) -> Iterator[Finding]:
     types = _types(context)
-    for loaded in _domain_units(context):
-        for declaration in loaded.unit.declarations:
-            if not isinstance(declaration, ast.Device):
-                continue
-            for command in declaration.commands:
-                ranges = command_ranges(declaration.name, command)
-                for parameter in command.parameters:
-                    if parameter.name not in ranges or not _typed(types, loaded, parameter):
-                        continue  # a default of the wrong kind is LR0404's
-                    breach = ranges[parameter.name].breach(parameter.default)
-                    if breach is not None:
-                        yield parameter.default.position, f"default {breach}", ""
+    for loaded, device, command in _commands(context):
+        ranges = command_ranges(device.name, command)
+        for parameter in command.parameters:
+            if parameter.name not in ranges or not _typed(types, loaded, parameter):
+                continue  # a default of the wrong kind is LR0404's
+            breach = ranges[parameter.name].breach(parameter.default)
+            if breach is not None:
+                yield parameter.default.position, f"default {breach}", ""
 
 
 def _typed(types: Types, loaded: Loaded, parameter: ast.CommandParameter) -> bool:
