@@ -74,13 +74,15 @@ def refusal(ranges: Mapping[str, SafeRange], arguments: Mapping[str, Any]) -> st
 
 
 def _numbers(value: Any) -> list[float] | None:
-    if isinstance(value, bool):
+    """The numbers of a scalar or a vector (tuple, list, numpy array); None for anything else,
+    which no range constrains."""
+    if isinstance(value, bool | str | bytes):
         return None
-    if isinstance(value, int | float):
+    try:
         return [float(value)]
-    if isinstance(value, tuple | list):
-        try:
-            return [float(v) for v in value]
-        except (TypeError, ValueError):
-            return None
-    return None
+    except (TypeError, ValueError):
+        pass
+    try:
+        return [float(v) for v in value]
+    except (TypeError, ValueError):
+        return None
