@@ -191,8 +191,8 @@ def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
             if breach is not None:
                 expected = f"{_expected(declared)} " if declared else ""
                 raise RunError(
-                    f"--param {name}={text.strip()}: {name} expects {expected}within the safe "
-                    f"range of where it goes, and {breach}"
+                    f"--param {name}={text.strip()}: {name} expects {expected}within the "
+                    f"safe range of the command it reaches; {breach}"
                 )
         bound[cls.PARAMETERS[name]] = value
     return bound
