@@ -169,9 +169,9 @@ class Workspace:
         if imported.wildcard:
             symbols = self.load_package(imported.name)
             if not symbols:
-                parent, _, last = imported.name.rpartition(".")
+                parent = imported.name.rpartition(".")[0]
                 siblings = {
-                    child.name
+                    f"{parent}.{child.name}" if parent else child.name
                     for folder in self.model_path.package_folders(parent)
                     for child in folder.iterdir()
                     if child.is_dir()
@@ -180,7 +180,7 @@ class Workspace:
                     imported.position,
                     "LR0102",
                     f"package '{imported.name}' not found",
-                    did_you_mean(last, siblings),
+                    did_you_mean(imported.name, siblings),
                 )
             return symbols
         symbol = self.lookup(imported.name)

@@ -32,3 +32,22 @@ def test_wildcard_import_of_a_mistyped_package_says_did_you_mean(
     assert main(["check", str(tmp_path)]) == 1
     out = capsys.readouterr().out
     assert "package 'action' not found (did you mean 'actions'?)" in out
+
+
+def test_a_nested_package_is_suggested_by_its_full_name(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    nested = {
+        f"peg/{name}": text.replace("package actions;", "package peg.actions;")
+        .replace("package skills;", "package peg.skills;")
+        .replace("import actions.*;", "import peg.action.*;")
+        for name, text in BASE.items()
+        if name.startswith(("actions/", "skills/"))
+    }
+    others = {
+        name: text for name, text in BASE.items() if not name.startswith(("actions/", "skills/"))
+    }
+    materialize(tmp_path, {**others, **nested})
+    assert main(["check", str(tmp_path / "peg" / "skills")]) == 1
+    out = capsys.readouterr().out
+    assert "package 'peg.action' not found (did you mean 'peg.actions'?)" in out
