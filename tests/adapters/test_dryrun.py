@@ -224,3 +224,13 @@ def test_a_call_that_ends_as_scripted_by_itself_uses_the_script_up() -> None:
     clicked = StopCondition("clicked", lambda s: True)
     assert adapter.execute("robot", "moveCartesian", goal, [clicked], 1.0).outcome == "clicked"
     assert adapter.execute("robot", "moveCartesian", goal, [REACHED], 1.0).outcome == "blocked"
+
+
+def test_the_rail_example_script_assembles(capsys: pytest.CaptureFixture[str]) -> None:
+    """The example script walks AssembleRail's success path: three terminals touched, clicked
+    on and seated."""
+    examples = Path(__file__).resolve().parents[2] / "examples"
+    task = examples / "din_rail" / "tasks" / "AssembleRail.lr"
+    script = examples / "din_rail" / "assembled.dryrun.json"
+    assert main(["run", str(task), "--adapter", "dryrun", "--script", str(script)]) == 0
+    assert "outcome: assembled" in capsys.readouterr().out
