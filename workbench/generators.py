@@ -63,12 +63,16 @@ def load_generator(name: str) -> Generator:
         raise GenerationError(f"target '{name}' cannot be loaded: {error}") from None
 
 
+class TemplateProblem(GenerationError):
+    """A template that cannot be read or rendered, named with its file and line."""
+
+
 def run_generator(generator: Generator, request: GenerationRequest) -> dict[str, str | bytes]:
     """The generator's files; a template that fails is reported with its file and line."""
     try:
         return generator.generate(request)
     except jinja2.TemplateError as error:
-        raise GenerationError(_template_problem(error)) from None
+        raise TemplateProblem(_template_problem(error)) from None
 
 
 def _template_problem(error: jinja2.TemplateError) -> str:
@@ -80,7 +84,7 @@ def _template_problem(error: jinja2.TemplateError) -> str:
         frames = traceback.extract_tb(error.__traceback__)
         lines = [f"{f.filename}:{f.lineno}" for f in frames if f.filename.endswith(".jinja")]
         where = lines[-1] if lines else "template"
-    return f"{where}: {error.message}"
+    return f"template {where}: {error.message}"
 
 
 def template_environment(

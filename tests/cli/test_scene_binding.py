@@ -1,5 +1,6 @@
-"""Binding at start: the cell's objects and scene are compared with the adapter's scene before
-the run starts; a mismatch is the model's mistake (exit 1), named, with nothing written."""
+"""Binding at start: the cell's objects are compared with the adapter's scene before the run
+starts; a missing object is the model's mistake (exit 1), an unknown scene a wrong use
+(exit 2); both are named, and nothing is written."""
 
 from __future__ import annotations
 
@@ -73,6 +74,6 @@ def test_an_unknown_scene_is_named_with_the_known_ones(
     models: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     status, output = run(capsys, models, "atlantis")
-    assert status == 1
+    assert status == 2
     assert "unknown scene 'atlantis'" in output
     assert "din_rail, empty, screwing" in output

@@ -50,7 +50,7 @@ def client():
         LocalCluster(
             n_workers=2,
             threads_per_worker=1,
-            dashboard_address=None,
+            dashboard_address=":0",  # any free port: several clusters may run at once
             silence_logs=logging.ERROR,
         ) as cluster,
         Client(cluster) as client,
@@ -186,7 +186,7 @@ def test_ctrl_c_cancels_the_sweep_and_writes_nothing(tmp_path: Path):
         *("-o", str(output)),
     ]
     process = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
-    time.sleep(15)
+    time.sleep(8)  # starting, or running: Ctrl-C cancels either way
     process.send_signal(signal.SIGINT)
     _, error = process.communicate(timeout=60)
     assert process.returncode == 130, error

@@ -1,4 +1,5 @@
-"""A template that fails names its file and line; nothing is written and no traceback."""
+"""A template that fails names its file and line (a usage error: exit 2); nothing is written
+and no traceback."""
 
 from __future__ import annotations
 
@@ -33,7 +34,7 @@ def test_template_errors_name_the_place(
          "--templates", str(templates)]
     )  # fmt: skip
     output = "".join(capsys.readouterr())
-    assert status == 1
+    assert status == 2
     assert message in output
     assert "internal error" not in output and "Traceback" not in output
     assert not out.exists()

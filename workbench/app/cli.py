@@ -16,18 +16,20 @@ from lightrocks.metamodel.ast import Position
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import report
 from lightrocks.workbench.check import all_cocos, check
-from lightrocks.workbench.diagnostics import Diagnostics
+from lightrocks.workbench.diagnostics import Diagnostics, Severity
 from lightrocks.workbench.extensions import language_extensions
 from lightrocks.workbench.files import write_atomic, write_tree
 from lightrocks.workbench.generators import (
     GenerationError,
     GenerationRequest,
+    TemplateProblem,
     load_generator,
     run_generator,
     write_all,
 )
 from lightrocks.workbench.languages import extensions, language_for, languages
 from lightrocks.workbench.modelpath import model_files
+from lightrocks.workbench.workspace import TOO_DEEP, deepest
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
 
@@ -81,6 +83,8 @@ def trace_file(path: str | None) -> Path | None:
         raise UsageError(f"--trace: {path} is not a regular file")
     if not trace.parent.is_dir():
         raise UsageError(f"--trace: no such folder: {trace.parent}")
+    if not os.access(trace.parent, os.W_OK):
+        raise UsageError(f"--trace: cannot write to folder {trace.parent}")
     return trace
 
 
@@ -99,6 +103,9 @@ def _configure_check(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("paths", nargs="+", help="model files or folders")
     _path_option(parser)
     parser.add_argument("--format", choices=sorted(report.FORMATS), default="text")
+    parser.add_argument(
+        "--strict", action="store_true", help="warnings fail the check too (exit 1), for CI"
+    )
 
 
 @command(_configure_check)
@@ -108,7 +115,9 @@ def cmd_check(args: argparse.Namespace) -> int:
     output = report.FORMATS[args.format](findings, all_cocos())
     if output:
         print(output)
-    return EXIT_FINDINGS if context.diagnostics.has_errors else EXIT_OK
+    warned = any(d.severity is Severity.WARNING for d in findings)
+    failed = context.diagnostics.has_errors or (args.strict and warned)
+    return EXIT_FINDINGS if failed else EXIT_OK
 
 
 def _configure_fmt(sub: argparse._SubParsersAction) -> None:
@@ -129,6 +138,9 @@ def cmd_fmt(args: argparse.Namespace) -> int:
         language = language_for(file.suffix)
         if language is None:
             raise UsageError(f"not a model file: {file}")
+        if not file.is_file():
+            diagnostics.error(Position(str(file), 1, 1), "LR0004", "not a regular file")
+            continue
         try:
             original[file] = file.read_text(encoding="utf-8")
             formatted[file] = language.format(original[file], str(file))
@@ -136,6 +148,8 @@ def cmd_fmt(args: argparse.Namespace) -> int:
             diagnostics.error(
                 Position(str(file), problem.line, problem.column), "LR0001", problem.message
             )
+        except RecursionError:
+            diagnostics.error(deepest(original[file], str(file)), "LR0001", TOO_DEEP)
         except (UnicodeDecodeError, ValueError):
             diagnostics.error(Position(str(file), 1, 1), "LR0002", "not a text file")
     if diagnostics.has_errors:
@@ -185,6 +199,8 @@ def cmd_generate(args: argparse.Namespace) -> int:
     request = GenerationRequest(context, files, options, templates)
     try:
         written = write_all(Path(args.output), run_generator(generator, request))
+    except TemplateProblem as error:
+        raise UsageError(str(error)) from None
     except GenerationError as error:
         print(f"lightrocks: error: {report.printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS
@@ -226,6 +242,11 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--video", metavar="FILE", help="record a video (.mp4) or PNG frames")
     parser.add_argument(
+        "--script",
+        metavar="FILE",
+        help="JSON file of scripted outcomes and sensor values for the dry run",
+    )
+    parser.add_argument(
         "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
     )
     _path_option(parser)
@@ -240,11 +261,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.errors import ModelError, RunError
     from lightrocks.workbench.app.loading import load_component
     from lightrocks.workbench.app.run import run_component, success_outcome
+    from lightrocks.workbench.app.script import read_script
     from lightrocks.workbench.app.seeds import run_seeds
 
     model = statechart_file(args.model)
     search_path = existing_paths(args.path)
     trace = trace_file(args.trace)
+    script_file = existing_paths([args.script])[0] if args.script else None
     events = [e.strip() for e in args.events.split(",") if e.strip()]
     if args.seeds is not None and args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
@@ -257,7 +280,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         cls = load_component(model, search_path)
         wanted = success_outcome(cls, args.success)
         values.parameters(cls, args.param)
-        adapter_options(args.adapter, args.seed, noise, args.video)
+        script = read_script(script_file, cls) if script_file else None
+        adapter_options(args.adapter, args.seed, noise, args.video, script)
         if args.seeds is not None:
             seeds = range(args.seed, args.seed + args.seeds)
             many = partial(
@@ -272,6 +296,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 events=events,
                 success=args.success,
                 workers=args.workers,
+                script=script,
             )
             return display.show_seeds(cls.NAME, wanted, len(seeds), many)
         single = partial(
@@ -285,6 +310,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             args.video,
             events=events,
             success=args.success,
+            script=script,
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
@@ -292,6 +318,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
+    except OSError as error:
+        raise UsageError(f"cannot write {error.filename or 'output'}: {error.strerror}") from None
 
 
 def _configure_sweep(sub: argparse._SubParsersAction) -> None:
@@ -429,7 +457,7 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    console = Console(stderr=True, highlight=False)
+    console = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
     try:
         return COMMANDS[args.command][1](args)
     except UsageError as error:

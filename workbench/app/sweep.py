@@ -8,8 +8,9 @@ import io
 import itertools
 import logging
 import math
+import signal
 from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -89,26 +90,38 @@ def grid_points(
 @contextmanager
 def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
     """A client of the cluster at ``scheduler``, else of a local cluster of worker
-    processes (one per core by default, one thread each: a simulation is single-threaded)."""
+    processes (one per core by default, one thread each: a simulation is single-threaded).
+
+    Ctrl-C is held back while the cluster starts: a cluster interrupted half-made cannot be
+    closed cleanly. It takes effect as soon as the cluster is there to be closed.
+    """
     from distributed import Client, LocalCluster
 
-    if scheduler is not None:
+    with ExitStack() as stack:
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
         try:
-            client = Client(scheduler, timeout="10s")
-        except OSError as error:
-            raise RunError(f"--scheduler {scheduler}: {error}") from None
-        with client:
-            yield client
-        return
-    cluster = LocalCluster(
-        n_workers=workers,
-        threads_per_worker=1,
-        processes=True,
-        dashboard_address=None,
-        silence_logs=logging.ERROR,
-    )
-    with cluster, Client(cluster) as client:
+            if scheduler is not None:
+                client = stack.enter_context(_connect(Client, scheduler))
+            else:
+                cluster = LocalCluster(
+                    n_workers=workers,
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=":0",  # any free port: several clusters may run at once
+                    silence_logs=logging.ERROR,
+                )
+                stack.enter_context(cluster)
+                client = stack.enter_context(Client(cluster))
+        finally:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
         yield client
+
+
+def _connect(client_type: type, scheduler: str) -> Any:
+    try:
+        return client_type(scheduler, timeout="10s")
+    except OSError as error:
+        raise RunError(f"--scheduler {scheduler}: {error}") from None
 
 
 def sweep(
