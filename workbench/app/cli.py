@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
 import sys
 from collections.abc import Callable, Sequence
@@ -261,6 +262,33 @@ def cmd_run(args: argparse.Namespace) -> int:
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
+
+
+def _configure_plot(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("plot", help="plot force, torque and TCP of a recorded trace")
+    parser.add_argument("trace", help="a trace written by 'run --trace'")
+    parser.add_argument("-o", "--output", required=True, help="FILE.png or FILE.html")
+
+
+@command(_configure_plot)
+def cmd_plot(args: argparse.Namespace) -> int:
+    from lightrocks.workbench.app.monitor.plot import FORMATS, TraceError, plot
+
+    if importlib.util.find_spec("matplotlib") is None:
+        raise UsageError("plot needs matplotlib: pip install 'lightrocks[plot]'")
+    trace = existing_paths([args.trace])[0]
+    output = Path(args.output)
+    if output.suffix not in FORMATS:
+        raise UsageError(f"-o must end in {' or '.join(FORMATS)}: {output}")
+    if not output.parent.is_dir():
+        raise UsageError(f"-o: no such folder: {output.parent}")
+    try:
+        recorded = plot(trace, output)
+    except TraceError as error:
+        print(f"lightrocks: error: {error}", file=sys.stderr)
+        return EXIT_FINDINGS
+    print(f"{output} written: {len(recorded.times)} samples, outcome {recorded.outcome}")
+    return EXIT_OK
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:

@@ -71,6 +71,7 @@ def drive(
     """
     from lightrocks.runtime import BindingError, Trace
     from lightrocks.runtime.binding import bind
+    from lightrocks.workbench.app.monitor.sampling import SampledAdapter
 
     chart = cls(**params)
     try:
@@ -81,6 +82,8 @@ def drive(
     recorder = Trace(trace)
     if progress is not None:
         recorder.listeners.append(progress)
+    if adapter is not None:
+        adapter = SampledAdapter(adapter, recorder)
     try:
         chart.start(adapter, trace=recorder)
         for event in events:
