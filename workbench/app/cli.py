@@ -9,6 +9,7 @@ import sys
 from collections.abc import Callable, Sequence
 from importlib.metadata import version
 from pathlib import Path
+from typing import Any
 
 from rich.console import Console
 
@@ -196,6 +197,20 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
     )
+    parser.add_argument(
+        "--monitor", metavar="[HOST:]PORT", help="serve a live page of the run (host 127.0.0.1)"
+    )
+    parser.add_argument(
+        "--break",
+        dest="breakpoints",
+        action="append",
+        default=[],
+        metavar="Q.NAME",
+        help="pause on entering this state (with --monitor); repeatable",
+    )
+    parser.add_argument(
+        "--paused", action="store_true", help="wait for Resume or Step on the page (--monitor)"
+    )
     _path_option(parser)
 
 
@@ -222,6 +237,10 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--workers needs --seeds and must be at least 1")
     if args.seeds is not None and args.video:
         raise UsageError("--video records a single run: leave out --seeds")
+    if (args.breakpoints or args.paused) and not args.monitor:
+        raise UsageError("--break and --paused need --monitor")
+    if args.monitor and args.seeds is not None:
+        raise UsageError("--monitor watches a single run: leave out --seeds")
     try:
         noise = values.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
         cls = load_component(model, search_path)
@@ -244,6 +263,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 workers=args.workers,
             )
             return display.show_seeds(cls.NAME, wanted, len(seeds), many)
+        watch = _monitor(args, model, search_path, cls.NAME) if args.monitor else None
         single = partial(
             run_component,
             cls,
@@ -255,6 +275,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             args.video,
             events=events,
             success=args.success,
+            watch=watch,
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
@@ -262,6 +283,24 @@ def cmd_run(args: argparse.Namespace) -> int:
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
+
+
+def _monitor(args: argparse.Namespace, model: Path, search_path: list[Path], name: str) -> Any:
+    """Start the page's server and tell where it is; the watch that feeds and controls it."""
+    from lightrocks.workbench.app.monitor.server import parse_address
+    from lightrocks.workbench.app.monitor.watch import monitor_for
+
+    try:
+        host, port = parse_address(args.monitor)
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    monitor, watch = monitor_for(model, search_path, name, args.breakpoints, args.paused)
+    try:
+        url = monitor.serve(host, port)
+    except OSError as error:
+        raise UsageError(str(error)) from None
+    print(f"monitor: {url}", file=sys.stderr, flush=True)
+    return watch
 
 
 def _configure_plot(sub: argparse._SubParsersAction) -> None:

@@ -63,6 +63,7 @@ def drive(
     events: Sequence[str],
     trace: Path | None,
     progress: Callable[[dict[str, Any]], None] | None = None,
+    watch: Any = None,
 ) -> Any:
     """Create, bind and run the chart; send the events once it rests.
 
@@ -82,8 +83,10 @@ def drive(
     recorder = Trace(trace)
     if progress is not None:
         recorder.listeners.append(progress)
+    if watch is not None:
+        recorder.listeners.append(watch.on_record)
     if adapter is not None:
-        adapter = SampledAdapter(adapter, recorder)
+        adapter = SampledAdapter(adapter, recorder, None if watch is None else watch.on_tick)
     try:
         chart.start(adapter, trace=recorder)
         for event in events:
@@ -122,6 +125,7 @@ def run_component(
     events: Sequence[str] = (),
     success: str | None = None,
     progress: Callable[[dict[str, Any]], None] | None = None,
+    watch: Any = None,
 ) -> RunResult:
     """One run of a loaded chart; the measurements are read before the adapter is closed,
     because closing ends its simulation."""
@@ -130,9 +134,11 @@ def run_component(
     options = adapter_options(adapter, seed, noise, video)
     device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
     try:
-        chart = drive(cls, values, device, events, trace, progress)
+        chart = drive(cls, values, device, events, trace, progress, watch)
         measure = getattr(device, "measurements", None)
         measured = dict(measure()) if measure is not None else {}
+        if watch is not None:
+            watch.finish(measured)
     finally:
         if device is not None:
             device.close()

@@ -7,7 +7,7 @@ simulated time, so any adapter that honours stop conditions gets sampled.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from lightrocks.runtime import Trace
@@ -22,11 +22,13 @@ SAMPLED = ("tcp", "wrench")
 
 
 class SampledAdapter:
-    """An adapter that records ``sample`` records into ``trace`` while it executes."""
+    """An adapter that records ``sample`` records into ``trace`` while it executes and
+    calls ``tick`` at every control tick (where a paused run waits)."""
 
-    def __init__(self, adapter: Any, trace: Trace) -> None:
+    def __init__(self, adapter: Any, trace: Trace, tick: Callable[[], None] | None = None) -> None:
         self._adapter = adapter
         self._trace = trace
+        self._tick = tick
         self._next = 0.0
 
     def __getattr__(self, name: str) -> Any:
@@ -44,6 +46,8 @@ class SampledAdapter:
         return self._adapter.execute(device, command, args, [*stop, sampler], budget)
 
     def _sample(self, snapshot: Any) -> bool:
+        if self._tick is not None:
+            self._tick()
         time = self._adapter.time
         if time + 1e-9 >= self._next:
             self._next = time + PERIOD

@@ -1,0 +1,28 @@
+"""The run's records for the page: appended by the run thread without ever waiting, read
+by the server thread; the oldest are dropped when nobody reads."""
+
+from __future__ import annotations
+
+import itertools
+from collections import deque
+from typing import Any
+
+CAPACITY = 20_000
+
+
+class Feed:
+    def __init__(self) -> None:
+        self._records: deque[tuple[int, dict[str, Any]]] = deque(maxlen=CAPACITY)
+        self._numbers = itertools.count(1)
+        self.history: list[dict[str, Any]] = []
+        """Every state-level record (no samples), so a late page can rebuild the view."""
+
+    def publish(self, record: dict[str, Any]) -> None:
+        self._records.append((next(self._numbers), record))
+        if record["kind"] != "sample":
+            self.history.append(record)
+
+    def since(self, number: int) -> tuple[int, list[dict[str, Any]]]:
+        """Records after ``number`` and the number of the last one."""
+        fresh = [(n, r) for n, r in list(self._records) if n > number]
+        return (fresh[-1][0] if fresh else number), [r for _, r in fresh]

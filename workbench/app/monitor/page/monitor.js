@@ -1,0 +1,115 @@
+// The monitor page: highlights the active path, plots the samples, logs the trace.
+const token = new URLSearchParams(location.search).get("token");
+const query = "?token=" + encodeURIComponent(token);
+const samples = { force: [], torque: [], tcp: [] };
+const WINDOW = 2000;
+let active = [];
+
+function title(g) { const t = g.querySelector("title"); return t ? t.textContent : ""; }
+
+function highlight() {
+  document.querySelectorAll("#task g.node, #task g.cluster").forEach(g => {
+    const name = title(g).replace(/^cluster_/, "");
+    g.classList.toggle("active", active.includes(name));
+  });
+  document.getElementById("task").dataset.active = active[active.length - 1] || "";
+}
+
+function markBreakpoints(points) {
+  document.querySelectorAll("#task g.node, #task g.edge").forEach(g => {
+    g.classList.toggle("breakpoint", points.includes(title(g)));
+  });
+}
+
+function apply(record) {
+  if (record.kind === "enter") {
+    const depth = record.state.split("/").length;
+    active = active.filter(p => p.split("/").length < depth);
+    active.push(record.state);
+  } else if (record.kind === "exit") {
+    active = active.filter(p => p !== record.state);
+  } else if (record.kind === "command") {
+    document.getElementById("command").textContent =
+      `${record.device}.${record.command} in ${record.state} (budget ${record.budget} s)`;
+  } else if (record.kind === "stop") {
+    document.getElementById("command").textContent =
+      `${record.state} stopped: ${record.outcome}`;
+  } else if (record.kind === "finished") {
+    document.getElementById("summary").textContent = "outcome: " + record.outcome;
+  }
+  if (record.kind === "sample") {
+    for (const [key, value] of Object.entries(record)) {
+      if (key.endsWith(".wrench")) {
+        samples.force.push([record.time, value.force]);
+        samples.torque.push([record.time, value.torque]);
+      } else if (key.endsWith(".tcp")) {
+        samples.tcp.push([record.time, value]);
+      }
+    }
+    for (const list of Object.values(samples)) if (list.length > WINDOW) list.splice(0, list.length - WINDOW);
+    return;
+  }
+  const line = document.createElement("div");
+  line.textContent = JSON.stringify(record);
+  const log = document.getElementById("log");
+  log.appendChild(line);
+  log.scrollTop = log.scrollHeight;
+}
+
+function draw(id, list) {
+  const canvas = document.getElementById(id), ctx = canvas.getContext("2d");
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  if (list.length < 2) return;
+  const t0 = list[0][0], t1 = list[list.length - 1][0] || t0 + 1;
+  let lo = Infinity, hi = -Infinity;
+  for (const [, v] of list) for (const x of v) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+  if (hi - lo < 1e-9) { hi += 1; lo -= 1; }
+  ["#1f77b4", "#ff7f0e", "#2ca02c"].forEach((colour, axis) => {
+    ctx.strokeStyle = colour; ctx.beginPath();
+    list.forEach(([t, v], i) => {
+      const x = (t - t0) / (t1 - t0 || 1) * canvas.width;
+      const y = canvas.height - (v[axis] - lo) / (hi - lo) * canvas.height;
+      if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+    });
+    ctx.stroke();
+  });
+  ctx.fillStyle = "#000"; ctx.fillText(`${id} [${lo.toFixed(3)}, ${hi.toFixed(3)}]`, 4, 12);
+}
+
+function showStatus(status) {
+  document.getElementById("state").textContent =
+    (status.paused ? "paused" : "running") + (status.where ? " at " + status.where : "");
+  document.body.dataset.paused = status.paused;
+  markBreakpoints(status.breakpoints || []);
+  if (status.measurements) {
+    document.getElementById("measurements").innerHTML = Object.entries(status.measurements)
+      .map(([k, v]) => `<tr><td>${k}</td><td>${v}</td></tr>`).join("");
+  }
+}
+
+async function control(action, at) {
+  const extra = at ? "&at=" + encodeURIComponent(at) : "";
+  const answer = await fetch("control/" + action + query + extra, { method: "POST" });
+  showStatus(await answer.json());
+}
+
+async function start() {
+  const svg = await (await fetch("task.svg" + query)).text();
+  document.getElementById("task").innerHTML = svg;
+  document.querySelectorAll("#task g.node, #task g.edge").forEach(g =>
+    g.addEventListener("click", () => control("break", title(g))));
+  for (const action of ["pause", "resume", "step"]) {
+    document.getElementById(action).addEventListener("click", () => control(action));
+  }
+  const socket = new WebSocket(location.href.replace(/^http/, "ws").replace(/\/[^/]*$/, "/stream") + query);
+  socket.onmessage = message => {
+    const data = JSON.parse(message.data);
+    if (data.title) document.getElementById("title").textContent = data.title;
+    (data.history || []).forEach(apply);
+    (data.records || []).forEach(apply);
+    if (data.status) showStatus(data.status);
+    highlight();
+    for (const [id, list] of Object.entries(samples)) draw(id, list);
+  };
+}
+start();
