@@ -14,11 +14,14 @@ class Feed:
     def __init__(self) -> None:
         self._records: deque[tuple[int, dict[str, Any]]] = deque(maxlen=CAPACITY)
         self._numbers = itertools.count(1)
+        self.last = 0
+        """The number of the newest record."""
         self.history: list[dict[str, Any]] = []
         """Every state-level record (no samples), so a late page can rebuild the view."""
 
     def publish(self, record: dict[str, Any]) -> None:
-        self._records.append((next(self._numbers), record))
+        self.last = next(self._numbers)
+        self._records.append((self.last, record))
         if record["kind"] != "sample":
             self.history.append(record)
 

@@ -38,6 +38,8 @@ class Monitor:
     token: str = field(default_factory=lambda: secrets.token_urlsafe(16))
     summary: dict[str, Any] = field(default_factory=dict)
     """Outcome and measurements once the run is over."""
+    sent: dict[int, int] = field(default_factory=dict)
+    """The number of the last record pushed to each open page (0 until the run is over)."""
 
     def app(self) -> Any:
         from starlette.applications import Starlette
@@ -92,11 +94,15 @@ class Monitor:
             number, _ = self.feed.since(0)
             try:
                 while True:
+                    over = bool(self.summary)
                     number, fresh = self.feed.since(number)
                     await socket.send_json({"records": fresh, "status": self.status()})
+                    self.sent[id(socket)] = number if over else 0
                     await asyncio.sleep(PUSH_PERIOD)
             except Exception:  # the page went away
                 return
+            finally:
+                self.sent.pop(id(socket), None)
 
         return Starlette(
             routes=[
@@ -116,6 +122,15 @@ class Monitor:
             "breakpoints": sorted(c.breakpoints),
             **self.summary,
         }
+
+    def drain(self, timeout: float = 3.0) -> None:
+        """Give open pages up to ``timeout`` seconds to receive the end of the run and its
+        summary, so a run that ends right away still shows its outcome."""
+        deadline = time.monotonic() + timeout
+        while any(n < self.feed.last for n in list(self.sent.values())):
+            if time.monotonic() > deadline:
+                return
+            time.sleep(0.02)
 
     def serve(self, host: str, port: int) -> str:
         """Start serving on a daemon thread; the URL with the token once it listens."""

@@ -16,21 +16,20 @@ DEPTH = "3"
 
 
 class Watch:
-    def __init__(self, control: RunControl, feed: Feed, summary: dict[str, Any]) -> None:
-        self.control = control
-        self.feed = feed
-        self.summary = summary
-        """Shown on the page once the run is over."""
+    def __init__(self, monitor: Monitor) -> None:
+        self.monitor = monitor
 
     def on_record(self, record: dict[str, Any]) -> None:
-        self.feed.publish(record)
-        self.control.on_record(record)
+        self.monitor.feed.publish(record)
+        self.monitor.control.on_record(record)
 
     def on_tick(self) -> None:
-        self.control.on_tick()
+        self.monitor.control.on_tick()
 
     def finish(self, measurements: dict[str, Any]) -> None:
-        self.summary["measurements"] = measurements
+        """Show the measurements and let open pages catch up before the process ends."""
+        self.monitor.summary["measurements"] = measurements
+        self.monitor.drain()
 
 
 def task_svg(model: Path, search_path: list[Path], name: str) -> str:
@@ -56,4 +55,4 @@ def monitor_for(
     control = RunControl(breakpoints, paused)
     feed = Feed()
     monitor = Monitor(feed, control, task_svg(model, search_path, name), name)
-    return monitor, Watch(control, feed, monitor.summary)
+    return monitor, Watch(monitor)

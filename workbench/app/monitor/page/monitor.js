@@ -5,18 +5,21 @@ const samples = { force: [], torque: [], tcp: [] };
 const WINDOW = 2000;
 let active = [];
 
-function title(g) { const t = g.querySelector("title"); return t ? t.textContent : ""; }
+function title(g) {
+  const t = g.querySelector("title");
+  return t ? t.textContent.replace(/^cluster_/, "") : "";
+}
+const CLICKABLE = "#task g.node, #task g.cluster, #task g.edge";
 
 function highlight() {
   document.querySelectorAll("#task g.node, #task g.cluster").forEach(g => {
-    const name = title(g).replace(/^cluster_/, "");
-    g.classList.toggle("active", active.includes(name));
+    g.classList.toggle("active", active.includes(title(g)));
   });
   document.getElementById("task").dataset.active = active[active.length - 1] || "";
 }
 
 function markBreakpoints(points) {
-  document.querySelectorAll("#task g.node, #task g.edge").forEach(g => {
+  document.querySelectorAll(CLICKABLE).forEach(g => {
     g.classList.toggle("breakpoint", points.includes(title(g)));
   });
 }
@@ -96,8 +99,8 @@ async function control(action, at) {
 async function start() {
   const svg = await (await fetch("task.svg" + query)).text();
   document.getElementById("task").innerHTML = svg;
-  document.querySelectorAll("#task g.node, #task g.edge").forEach(g =>
-    g.addEventListener("click", () => control("break", title(g))));
+  document.querySelectorAll(CLICKABLE).forEach(g =>
+    g.addEventListener("click", event => { event.stopPropagation(); control("break", title(g)); }));
   for (const action of ["pause", "resume", "step"]) {
     document.getElementById(action).addEventListener("click", () => control(action));
   }
