@@ -1,5 +1,11 @@
 """The live monitor in headless chromium: the highlighted state follows the run; pause,
-step, a breakpoint and resume act on the run; requests without the token are refused."""
+step, a breakpoint, resume and abort act on the run and show in its trace; requests without
+the token are refused.
+
+chromium and chromedriver are found on PATH or through $CHROMIUM and $CHROMEDRIVER
+(Debian: ``apt-get install chromium chromium-driver``). Screenshots are written to the
+test's temporary folder and, when $MONITOR_ARTIFACTS names a folder, copied there.
+"""
 
 from __future__ import annotations
 
@@ -22,30 +28,42 @@ ROOT = Path(__file__).resolve().parents[2]
 SCREW_TASK = ROOT / "examples" / "screwing" / "tasks" / "ScrewTask.lr"
 CHROMIUM = os.environ.get("CHROMIUM", shutil.which("chromium") or "")
 CHROMEDRIVER = os.environ.get("CHROMEDRIVER", shutil.which("chromedriver") or "")
-WAIT = 120.0
+WAIT = 300.0
 """Seconds a page may take to show what is expected (a limit, not a measurement)."""
+HIGHLIGHT = (1.0, 0.953, 0.769)
+"""The fill of an active skill's cluster (#fff3c4 in index.html)."""
 
 
 @pytest.fixture
-def monitored(tmp_path: Path, tmp_path_factory):
-    """A paused run of the screwing task under the monitor: (url, trace, process)."""
-    trace = tmp_path / "run.jsonl"
+def launch(tmp_path: Path, tmp_path_factory):
+    """Start ``lightrocks`` with a monitor on a free port: (url, trace, process)."""
+    processes: list[subprocess.Popen] = []
     env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "cache")}
-    command = [sys.executable, "-m", "lightrocks.workbench.app.cli", "run", str(SCREW_TASK)]
-    command += ["--adapter", os.environ.get("MONITOR_ADAPTER", "dryrun"), "--trace", str(trace)]
-    command += ["--monitor", "0", "--paused"]
-    err = tmp_path / "stderr.txt"
-    with err.open("w") as stderr:
-        process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=stderr)
-    url = ""
-    while not url and process.poll() is None:
-        time.sleep(0.1)
-        lines = err.read_text().splitlines()
-        url = next((s.removeprefix("monitor: ") for s in lines if s.startswith("monitor: ")), "")
-    assert url, f"the monitor printed no URL: {err.read_text()}"
-    yield url, trace, process
-    process.kill()
-    process.wait()
+
+    def start(*arguments: str) -> tuple[str, Path, subprocess.Popen]:
+        trace = tmp_path / f"run{len(processes)}.jsonl"
+        err = tmp_path / f"stderr{len(processes)}.txt"
+        command = [sys.executable, "-m", "lightrocks.workbench.app.cli", *arguments]
+        command += ["--monitor", "0"]
+        if arguments[0] == "run":
+            command += ["--trace", str(trace)]
+        with err.open("w") as stderr:
+            process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=stderr)
+        processes.append(process)
+        url = ""
+        while not url and process.poll() is None:
+            time.sleep(0.1)
+            lines = err.read_text().splitlines()
+            url = next(
+                (s.removeprefix("monitor: ") for s in lines if s.startswith("monitor: ")), ""
+            )
+        assert url, f"the monitor printed no URL: {err.read_text()}"
+        return url, trace, process
+
+    yield start
+    for process in processes:
+        process.kill()
+        process.wait()
 
 
 @pytest.fixture
@@ -64,84 +82,152 @@ def browser():
     driver.quit()
 
 
-def test_requests_without_the_token_are_refused(monitored) -> None:
-    url, _, _ = monitored
+class Page:
+    """The monitor page as a user sees it."""
+
+    def __init__(self, browser, url: str) -> None:
+        from selenium.webdriver.support.ui import WebDriverWait
+
+        self.browser = browser
+        self.wait = WebDriverWait(browser, WAIT)
+        browser.get(url)
+        self.until(lambda: self.browser.find_elements("css selector", "#task g.node"))
+
+    def until(self, condition) -> None:
+        self.wait.until(lambda _: condition())
+
+    def text(self, id: str) -> str:
+        return self.browser.find_element("id", id).text
+
+    @property
+    def active(self) -> str:
+        return self.browser.find_element("id", "task").get_attribute("data-active")
+
+    def press(self, button: str) -> None:
+        self.browser.find_element("id", button).click()
+
+    def cluster(self, path: str):
+        return next(
+            g
+            for g in self.browser.find_elements("css selector", "#task g.cluster")
+            if g.find_element("tag name", "title").get_attribute("textContent") == f"cluster_{path}"
+        )
+
+    def click(self, element) -> None:
+        """A click on an SVG group (Selenium's own click needs a visible rectangle)."""
+        self.browser.execute_script(
+            "arguments[0].dispatchEvent(new MouseEvent('click', {bubbles: true}))", element
+        )
+
+    def screenshot(self, path: Path) -> Path:
+        self.browser.save_screenshot(str(path))
+        artifacts = os.environ.get("MONITOR_ARTIFACTS")
+        if artifacts:
+            Path(artifacts).mkdir(parents=True, exist_ok=True)
+            shutil.copy(path, Path(artifacts) / path.name)
+        return path
+
+
+def records(trace: Path) -> list[dict]:
+    return [json.loads(line) for line in trace.read_text().splitlines()]
+
+
+def test_requests_without_the_token_are_refused(launch) -> None:
+    url, _, _ = launch("run", str(SCREW_TASK), "--adapter", "dryrun", "--paused")
     base = url.split("?")[0]
-    for path in ("", "task.svg", "control/resume"):
-        method = "POST" if path.startswith("control") else "GET"
-        request = urllib.request.Request(base + path, method=method)
-        with pytest.raises(urllib.error.HTTPError) as refused:
-            urllib.request.urlopen(request, timeout=30)
-        assert refused.value.code == 403
-    wrong = urllib.request.Request(f"{base}control/resume?token=wrong", method="POST")
-    with pytest.raises(urllib.error.HTTPError):
-        urllib.request.urlopen(wrong, timeout=30)
+    for path in ("", "task.svg", "control/resume", "control/abort"):
+        for query in ("", "?token=wrong"):
+            method = "POST" if path.startswith("control") else "GET"
+            request = urllib.request.Request(base + path + query, method=method)
+            with pytest.raises(urllib.error.HTTPError) as refused:
+                urllib.request.urlopen(request, timeout=30)
+            assert refused.value.code == 403
+    websocket = pytest.importorskip("websockets.sync.client")
+    with (
+        pytest.raises(Exception, match="403"),
+        websocket.connect(base.replace("http", "ws") + "stream") as socket,
+    ):
+        socket.recv(timeout=30)
+    with urllib.request.urlopen(url, timeout=30) as page:
+        assert b"LightRocks monitor" in page.read()
 
 
-def test_pause_step_breakpoint_resume(monitored, browser, tmp_path: Path) -> None:
-    from selenium.webdriver.common.by import By
-    from selenium.webdriver.support.ui import WebDriverWait
+@pytest.mark.parametrize("adapter", ["dryrun", pytest.param("mujoco", marks=pytest.mark.slow)])
+def test_step_breakpoint_and_abort(adapter: str, launch, browser, tmp_path: Path) -> None:
+    url, trace, process = launch("run", str(SCREW_TASK), "--adapter", adapter, "--paused")
+    page = Page(browser, url)
+    page.until(lambda: page.text("state") == "paused" and page.active == "ScrewTask")
 
-    url, trace, process = monitored
-    wait = WebDriverWait(browser, WAIT)
-    browser.get(url)
-    state = browser.find_element(By.ID, "state")
-    wait.until(lambda _: state.text.startswith("paused"))
-    wait.until(lambda b: b.find_elements(By.CSS_SELECTOR, "#task g.node"))
-    task = browser.find_element(By.ID, "task")
-    wait.until(lambda _: task.get_attribute("data-active") == "ScrewTask")
-    assert state.text == "paused", "the run went on before Start"
+    page.press("step")
+    page.until(lambda: page.text("state") == "paused at ScrewTask/go->ScrewTask/FindScrew")
+    assert page.active == "ScrewTask"
+    page.press("step")
+    page.until(lambda: page.active == "ScrewTask/FindScrew")
+    page.until(lambda: page.text("state") == "paused at ScrewTask/FindScrew")
 
-    browser.find_element(By.ID, "step").click()
-    wait.until(lambda _: state.text == "paused at ScrewTask/go->ScrewTask/FindScrew")
-    assert task.get_attribute("data-active") == "ScrewTask"
-
-    browser.find_element(By.ID, "step").click()
-    wait.until(lambda _: task.get_attribute("data-active") == "ScrewTask/FindScrew")
-    wait.until(lambda _: state.text == "paused at ScrewTask/FindScrew")
-
-    drive_in = next(
-        g
-        for g in browser.find_elements(By.CSS_SELECTOR, "#task g.cluster")
-        if g.find_element(By.TAG_NAME, "title").get_attribute("textContent")
-        == "cluster_ScrewTask/DriveIn"
-    )
-    browser.execute_script(
-        "arguments[0].dispatchEvent(new MouseEvent('click', {bubbles: true}))", drive_in
-    )
-    wait.until(lambda _: "breakpoint" in drive_in.get_attribute("class"))
-
-    browser.find_element(By.ID, "resume").click()
-    wait.until(lambda _: state.text == "paused at ScrewTask/DriveIn")
-    wait.until(lambda _: task.get_attribute("data-active") == "ScrewTask/DriveIn")
+    drive_in = page.cluster("ScrewTask/DriveIn")
+    page.click(drive_in)
+    page.until(lambda: "breakpoint" in drive_in.get_attribute("class"))
+    page.press("resume")
+    page.until(lambda: page.text("state") == "paused at ScrewTask/DriveIn")
+    assert page.active == "ScrewTask/DriveIn"
     assert "active" in drive_in.get_attribute("class")
-    shot = tmp_path / "monitor.png"
-    browser.save_screenshot(str(shot))
-    assert_not_blank(shot)
-    log = browser.find_element(By.ID, "log").text.splitlines()
-    entered = [line for line in log if '"kind":"enter"' in line]
-    assert '"state":"ScrewTask/DriveIn"' in entered[-1], "the run went past the breakpoint"
+    assert "active" not in page.cluster("ScrewTask/FindScrew").get_attribute("class")
+    assert_shows_the_run(page.screenshot(tmp_path / f"monitor-{adapter}.png"))
     assert process.poll() is None, "the run ended while paused"
 
-    browser.find_element(By.ID, "resume").click()
-    summary = browser.find_element(By.ID, "summary")
-    wait.until(lambda _: summary.text.startswith("outcome: "))
-    assert summary.text == "outcome: screwed"
+    if adapter == "mujoco":  # a command long enough to pause inside it
+        page.press("resume")
+        page.until(lambda: page.text("state").startswith("running"))
+        page.until(lambda: page.active.startswith("ScrewTask/DriveIn/"))
+        page.press("pause")
+        page.until(lambda: page.text("state") == "paused")
+    page.press("abort")
+    page.until(lambda: page.text("summary") == "outcome: preempted")
+    assert process.wait(timeout=WAIT) == 1
+
+    run = records(trace)
+    paused = [r for r in run if r["kind"] == "paused"]
+    places = [r["at"] for r in paused]
+    assert places[:4] == [
+        "ScrewTask",
+        "ScrewTask/go->ScrewTask/FindScrew",
+        "ScrewTask/FindScrew",
+        "ScrewTask/DriveIn",
+    ]
+    for record in paused[:-1]:  # the simulated time stands still while paused
+        assert run[run.index(record) + 1] == {"time": record["time"], "kind": "resumed"}
+    if adapter == "mujoco":
+        assert places[4].startswith("ScrewTask/DriveIn/")
+    aborted, finished = run[run.index(paused[-1]) + 1 :]
+    assert aborted["kind"] == "aborted" and "ScrewTask/DriveIn" in aborted["active"]
+    assert aborted["time"] == paused[-1]["time"], "the run went on after Abort"
+    assert finished == {"time": aborted["time"], "kind": "finished", "outcome": "preempted"}
+    assert not [r for r in run if r["kind"] == "error"], "the arm did not hold"
+    assert [r["state"] for r in run if r["kind"] == "enter"].count("ScrewTask/LetGo") == 0
+
+
+def test_breakpoint_from_the_command_line_and_resume_to_the_end(launch, browser) -> None:
+    url, trace, process = launch(
+        "run", str(SCREW_TASK), "--adapter", "dryrun", "--break", "ScrewTask.HoldOverHole"
+    )
+    page = Page(browser, url)
+    page.until(lambda: page.text("state") == "paused at ScrewTask/HoldOverHole")
+    assert page.active == "ScrewTask/HoldOverHole"
+    page.press("resume")
+    page.until(lambda: page.text("summary") == "outcome: screwed")
     assert process.wait(timeout=WAIT) == 0
-    records = [json.loads(line) for line in trace.read_text().splitlines()]
-    assert [r["state"] for r in records if r["kind"] == "enter"].count("ScrewTask/DriveIn") == 1
-    assert records[-1]["kind"] == "finished" and records[-1]["outcome"] == "screwed"
+    run = records(trace)
+    assert [r.get("at") for r in run if r["kind"] == "paused"] == ["ScrewTask/HoldOverHole"]
+    assert run[-1]["kind"] == "finished" and run[-1]["outcome"] == "screwed"
 
 
-def assert_not_blank(png: Path) -> None:
+def assert_shows_the_run(png: Path) -> None:
+    """A screenshot of the page is not blank and shows an active skill highlighted."""
     from matplotlib.image import imread
 
     pixels = imread(png)[..., :3]
-    assert pixels.shape[0] > 500 and pixels.shape[1] > 800
+    assert pixels.shape[0] > 600 and pixels.shape[1] > 1000
     assert pixels.std() > 0.05, "the screenshot is blank"
-    highlighted = (abs(pixels - [1.0, 0.953, 0.769]).max(axis=2) < 0.03).sum()
+    highlighted = (abs(pixels - HIGHLIGHT).max(axis=2) < 0.03).sum()
     assert highlighted > 100, "no highlighted state in the screenshot"
-    artifacts = os.environ.get("MONITOR_ARTIFACTS")
-    if artifacts:
-        Path(artifacts).mkdir(parents=True, exist_ok=True)
-        shutil.copy(png, Path(artifacts) / png.name)

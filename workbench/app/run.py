@@ -94,7 +94,7 @@ def drive(
     if progress is not None:
         recorder.listeners.append(progress)
     if watch is not None:
-        recorder.listeners.append(watch.on_record)
+        watch.attach(recorder)
     if adapter is not None:
         adapter = SampledAdapter(adapter, recorder, None if watch is None else watch.on_tick)
     try:

@@ -1,8 +1,8 @@
-"""Execution control of a run: pause, resume, step one transition and breakpoints.
+"""Execution control of a run: pause, resume, step one transition, breakpoints and abort.
 
-The run thread consults the control at every trace record (each transition and state
-entry) and at every control tick of a running command; while paused it waits there, so
-the simulated time stands still and the arm holds its pose. Requests come from any thread.
+Requests come from any thread; the run's thread asks ``stops_at`` at every state entry and
+transition and ``wait``s at every trace record and control tick. While it waits the
+simulated time stands still and the arm holds its pose.
 """
 
 from __future__ import annotations
@@ -11,12 +11,20 @@ import threading
 from collections.abc import Iterable
 from typing import Any
 
-STOPPING_KINDS = ("enter", "transition")
-
 
 def state_path(name: str) -> str:
     """``Task.Skill.Action`` (as on the command line) as the path the trace uses."""
     return name.replace(".", "/")
+
+
+def place(record: dict[str, Any]) -> str:
+    """Where a state entry or a transition happens, as a breakpoint names it; else ''."""
+    if record["kind"] == "enter":
+        return record["state"]
+    if record["kind"] == "transition":
+        owner = record["state"]
+        return f"{owner}/{record['source']}->{owner}/{record['target']}"
+    return ""
 
 
 class RunControl:
@@ -24,8 +32,10 @@ class RunControl:
         self.breakpoints = {state_path(b) for b in breakpoints}
         self._running = threading.Event()
         self._stepping = False
+        self.aborting = False
+        """Abort was asked for and the run has not stopped yet."""
         self.where = ""
-        """The state the run stopped at, for the page."""
+        """The breakpoint or step the run stopped at, for the page."""
         if not paused:
             self._running.set()
 
@@ -34,6 +44,7 @@ class RunControl:
         return not self._running.is_set()
 
     def pause(self) -> None:
+        self.where = ""
         self._running.clear()
 
     def resume(self) -> None:
@@ -45,6 +56,11 @@ class RunControl:
         self._stepping = True
         self._running.set()
 
+    def abort(self) -> None:
+        """Stop the run safely at its next record or control tick, paused or not."""
+        self.aborting = True
+        self._running.set()
+
     def toggle_breakpoint(self, name: str) -> bool:
         path = state_path(name)
         if path in self.breakpoints:
@@ -53,22 +69,17 @@ class RunControl:
         self.breakpoints.add(path)
         return True
 
-    # -- consulted by the run thread ------------------------------------------------------
+    # -- asked by the run's thread --------------------------------------------------------
 
-    def on_record(self, record: dict[str, Any]) -> None:
-        """Stop at a breakpoint (a state entered, a transition taken) or after a step."""
-        kind, owner = record["kind"], record.get("state", "")
-        if kind == "enter":
-            where = owner
-        elif kind == "transition":
-            where = f"{owner}/{record['source']}->{owner}/{record['target']}"
-        else:
-            return
-        if where in self.breakpoints or self._stepping:
-            self._stepping = False
-            self.where = where
-            self._running.clear()
-        self._running.wait()
+    def stops_at(self, record: dict[str, Any]) -> bool:
+        """Whether the run pauses at this record: a breakpoint, or the end of a step."""
+        where = place(record)
+        if not where or not (where in self.breakpoints or self._stepping):
+            return False
+        self._stepping = False
+        self.where = where
+        self._running.clear()
+        return True
 
-    def on_tick(self) -> None:
+    def wait(self) -> None:
         self._running.wait()

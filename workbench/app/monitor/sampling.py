@@ -23,9 +23,11 @@ SAMPLED = ("tcp", "wrench")
 
 class SampledAdapter:
     """An adapter that records ``sample`` records into ``trace`` while it executes and
-    calls ``tick`` at every control tick (where a paused run waits)."""
+    calls ``tick(time)`` at every control tick (where a paused run waits)."""
 
-    def __init__(self, adapter: Any, trace: Trace, tick: Callable[[], None] | None = None) -> None:
+    def __init__(
+        self, adapter: Any, trace: Trace, tick: Callable[[float], None] | None = None
+    ) -> None:
         self._adapter = adapter
         self._trace = trace
         self._tick = tick
@@ -46,9 +48,9 @@ class SampledAdapter:
         return self._adapter.execute(device, command, args, [*stop, sampler], budget)
 
     def _sample(self, snapshot: Any) -> bool:
-        if self._tick is not None:
-            self._tick()
         time = self._adapter.time
+        if self._tick is not None:
+            self._tick(time)
         if time + 1e-9 >= self._next:
             self._next = time + PERIOD
             fields = {

@@ -79,6 +79,8 @@ class Monitor:
                 c.resume()
             elif action == "step":
                 c.step()
+            elif action == "abort":
+                c.abort()
             elif action == "break":
                 c.toggle_breakpoint(request.query_params.get("at", ""))
             else:

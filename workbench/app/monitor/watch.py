@@ -7,6 +7,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from lightrocks.runtime import Abort, Trace
 from lightrocks.workbench.app.monitor.control import RunControl
 from lightrocks.workbench.app.monitor.feed import Feed
 from lightrocks.workbench.app.monitor.server import Monitor
@@ -16,15 +17,44 @@ DEPTH = "3"
 
 
 class Watch:
+    """Publishes every record to the page and holds the run's thread while it is paused;
+    the pauses, resumptions and an abort are written into the trace."""
+
+    OWN = ("paused", "resumed")
+    """The kinds of record the watch writes itself."""
+
     def __init__(self, monitor: Monitor) -> None:
         self.monitor = monitor
+        self.control = monitor.control
+        self.trace: Trace | None = None
+        self.state = ""
+        """The innermost state entered last."""
+
+    def attach(self, trace: Trace) -> None:
+        self.trace = trace
+        trace.listeners.append(self.on_record)
 
     def on_record(self, record: dict[str, Any]) -> None:
         self.monitor.feed.publish(record)
-        self.monitor.control.on_record(record)
+        if record["kind"] in self.OWN:
+            return
+        if record["kind"] == "enter":
+            self.state = record["state"]
+        self.control.stops_at(record)
+        self._hold(record["time"])
 
-    def on_tick(self) -> None:
-        self.monitor.control.on_tick()
+    def on_tick(self, time: float) -> None:
+        self._hold(time)
+
+    def _hold(self, time: float) -> None:
+        if self.control.paused and self.trace is not None:
+            self.trace.write(time, "paused", at=self.control.where or self.state)
+            self.control.wait()
+            if not self.control.aborting:
+                self.trace.write(time, "resumed")
+        if self.control.aborting:
+            self.control.aborting = False
+            raise Abort("aborted from the monitor")
 
     def finish(self, measurements: dict[str, Any]) -> None:
         """Show the measurements and let open pages catch up before the process ends."""

@@ -101,7 +101,7 @@ async function start() {
   document.getElementById("task").innerHTML = svg;
   document.querySelectorAll(CLICKABLE).forEach(g =>
     g.addEventListener("click", event => { event.stopPropagation(); control("break", title(g)); }));
-  for (const action of ["pause", "resume", "step"]) {
+  for (const action of ["pause", "resume", "step", "abort"]) {
     document.getElementById(action).addEventListener("click", () => control(action));
   }
   const socket = new WebSocket(location.href.replace(/^http/, "ws").replace(/\/[^/]*$/, "/stream") + query);
