@@ -231,3 +231,52 @@ def assert_shows_the_run(png: Path) -> None:
     assert pixels.std() > 0.05, "the screenshot is blank"
     highlighted = (abs(pixels - HIGHLIGHT).max(axis=2) < 0.03).sum()
     assert highlighted > 100, "no highlighted state in the screenshot"
+
+
+def active_at(run: list[dict], time: float) -> str:
+    """The innermost state a run was in at ``time``, from its trace."""
+    active: list[str] = []
+    for record in run:
+        if record["time"] > time:
+            break
+        if record["kind"] == "enter":
+            active.append(record["state"])
+        elif record["kind"] == "exit":
+            active.remove(record["state"])
+    return active[-1]
+
+
+def test_replay_with_the_time_slider(launch, browser, tmp_path: Path) -> None:
+    trace = tmp_path / "recorded.jsonl"
+    command = [sys.executable, "-m", "lightrocks.workbench.app.cli", "run", str(SCREW_TASK)]
+    command += ["--adapter", "dryrun", "--trace", str(trace)]
+    subprocess.run(command, check=True, capture_output=True)
+    run = records(trace)
+    url, _, _ = launch("replay", str(trace))
+    page = Page(browser, url)
+    page.until(lambda: page.text("summary") == "outcome: screwed")
+    slider = browser.find_element("id", "slider")
+    assert float(slider.get_attribute("max")) == run[-1]["time"]
+    assert not browser.find_element("id", "pause").is_displayed()
+
+    def move_to(time: float) -> None:
+        browser.execute_script(
+            "arguments[0].value = arguments[1];arguments[0].dispatchEvent(new Event('input'))",
+            slider,
+            time,
+        )
+
+    drive_in = next(r["time"] for r in run if r.get("state") == "ScrewTask/DriveIn")
+    for moment in (0.0, drive_in + 0.05, drive_in - 0.05):
+        move_to(moment)
+        page.until(lambda moment=moment: page.active == active_at(run, moment))
+        assert page.text("summary") == "running"
+        shown = [r for r in run if r["time"] <= moment and r["kind"] != "sample"]
+        assert len(page.text("log").splitlines()) == len(shown)
+    move_to(drive_in + 0.05)
+    page.until(lambda: page.active.startswith("ScrewTask/DriveIn"))
+    assert_shows_the_run(page.screenshot(tmp_path / "replay.png"))
+    refused = urllib.request.Request(url.replace("/?", "/control/resume?"), method="POST")
+    with pytest.raises(urllib.error.HTTPError) as error:
+        urllib.request.urlopen(refused, timeout=30)
+    assert error.value.code == 409

@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 
 from lightrocks.workbench.app.cli import main
-from lightrocks.workbench.app.monitor.plot import read_trace, recording
+from lightrocks.workbench.app.monitor.plot import recording
+from lightrocks.workbench.app.monitor.traces import read_trace
 
 pytest.importorskip("matplotlib", reason="plot needs matplotlib (the 'plot' extra)")
 
@@ -35,7 +36,7 @@ def check_png(path: Path) -> None:
     from matplotlib.image import imread
 
     pixels = imread(path)
-    assert pixels.shape[0] > 400 and pixels.shape[1] > 600
+    assert pixels.shape[:2] == (800, 1100), "not the figure's 11 x 8 in at 100 dpi"
     rgb = pixels[..., :3]
     assert rgb.std() > 0.05, "the picture is blank"
     coloured = (rgb.max(axis=2) - rgb.min(axis=2)) > 0.3
@@ -52,6 +53,10 @@ def check_html(path: Path, trace: Path) -> None:
     assert rec.times, "the trace has no samples"
     for span in rec.spans:
         assert f"<td>{span.name}</td>" in text
+    data = re.search(r'<script type="application/json" id="series">(.*?)</script>', text, re.S)
+    series = json.loads(data.group(1))
+    assert series["time"] == rec.times and series["force"] == rec.force
+    assert series["tcp"] == rec.tcp and series["torque"] == rec.torque
 
 
 def plot_both(trace: Path, folder: Path, capsys) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib.util
 import os
 import sys
@@ -252,7 +253,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.adapter_factory import adapter_options
     from lightrocks.workbench.app.errors import ModelError, RunError
     from lightrocks.workbench.app.loading import load_component
-    from lightrocks.workbench.app.run import run_component, success_outcome
+    from lightrocks.workbench.app.run import run_component, run_header, success_outcome
     from lightrocks.workbench.app.seeds import run_seeds
 
     model = statechart_file(args.model)
@@ -304,6 +305,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             events=events,
             success=args.success,
             watch=watch,
+            header=run_header(model, search_path),
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
@@ -315,20 +317,73 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 def _monitor(args: argparse.Namespace, model: Path, search_path: list[Path], name: str) -> Any:
     """Start the page's server and tell where it is; the watch that feeds and controls it."""
-    from lightrocks.workbench.app.monitor.server import parse_address
     from lightrocks.workbench.app.monitor.watch import monitor_for
 
+    address = _monitor_address(args.monitor)
+    monitor, watch = monitor_for(model, search_path, name, args.breakpoints, args.paused)
+    _serve(monitor, address)
+    return watch
+
+
+def _monitor_address(text: str) -> tuple[str, int]:
+    from lightrocks.workbench.app.monitor.server import parse_address
+
+    if any(importlib.util.find_spec(m) is None for m in ("starlette", "uvicorn", "websockets")):
+        raise UsageError("--monitor needs its web server: pip install 'lightrocks[monitor]'")
     try:
-        host, port = parse_address(args.monitor)
+        return parse_address(text)
     except ValueError as error:
         raise UsageError(str(error)) from None
-    monitor, watch = monitor_for(model, search_path, name, args.breakpoints, args.paused)
+
+
+def _serve(monitor: Any, address: tuple[str, int]) -> None:
     try:
-        url = monitor.serve(host, port)
+        url = monitor.serve(*address)
     except OSError as error:
         raise UsageError(str(error)) from None
     print(f"monitor: {url}", file=sys.stderr, flush=True)
-    return watch
+
+
+def _configure_replay(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("replay", help="replay a recorded run in the monitor page")
+    parser.add_argument("trace", help="a trace written by 'run --trace'")
+    parser.add_argument(
+        "--monitor", required=True, metavar="[HOST:]PORT", help="serve the page (host 127.0.0.1)"
+    )
+    parser.add_argument("--model", help="the .lr file the run ran (default: named in the trace)")
+    _path_option(parser)
+
+
+@command(_configure_replay)
+def cmd_replay(args: argparse.Namespace) -> int:
+    """Serve the page with a time slider over the recorded run until Ctrl-C."""
+    import threading
+
+    from lightrocks.workbench.app.monitor.traces import TraceError, header, read_trace, task_name
+    from lightrocks.workbench.app.monitor.watch import replay_for
+
+    trace = existing_paths([args.trace])[0]
+    address = _monitor_address(args.monitor)
+    try:
+        records = read_trace(trace)
+        name = task_name(records)
+    except TraceError as error:
+        print(f"lightrocks: error: {error}", file=sys.stderr)
+        return EXIT_FINDINGS
+    named, named_path = header(records)
+    if args.model is None and named is None:
+        raise UsageError(f"{trace} names no model (an older trace): give --model")
+    model = statechart_file(args.model or str(named))
+    search_path = existing_paths(args.path) if args.model else existing_paths(named_path)
+    try:
+        monitor = replay_for(model, search_path, name, records)
+    except GenerationError as error:
+        raise UsageError(str(error)) from None
+    _serve(monitor, address)
+    print(f"replaying {trace} ({records[-1]['time']:.3f} s); Ctrl-C ends", file=sys.stderr)
+    with contextlib.suppress(KeyboardInterrupt):
+        threading.Event().wait()
+    return EXIT_OK
 
 
 def _configure_plot(sub: argparse._SubParsersAction) -> None:
@@ -339,7 +394,8 @@ def _configure_plot(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_plot)
 def cmd_plot(args: argparse.Namespace) -> int:
-    from lightrocks.workbench.app.monitor.plot import FORMATS, TraceError, plot
+    from lightrocks.workbench.app.monitor.plot import FORMATS, plot
+    from lightrocks.workbench.app.monitor.traces import TraceError
 
     if importlib.util.find_spec("matplotlib") is None:
         raise UsageError("plot needs matplotlib: pip install 'lightrocks[plot]'")

@@ -5,7 +5,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -64,6 +64,7 @@ def drive(
     trace: Path | None,
     progress: Callable[[dict[str, Any]], None] | None = None,
     watch: Any = None,
+    header: Mapping[str, Any] | None = None,
 ) -> Any:
     """Create, bind and run the chart; send the events once it rests.
 
@@ -91,6 +92,8 @@ def drive(
         recorder = Trace(trace)
     except OSError as error:
         raise RunError(f"--trace: cannot write {trace}: {error.strerror or error}") from None
+    if header:
+        recorder.write(0.0, "run", **header)
     if progress is not None:
         recorder.listeners.append(progress)
     if watch is not None:
@@ -139,6 +142,7 @@ def run_component(
     success: str | None = None,
     progress: Callable[[dict[str, Any]], None] | None = None,
     watch: Any = None,
+    header: Mapping[str, Any] | None = None,
 ) -> RunResult:
     """One run of a loaded chart; the measurements are read before the adapter is closed,
     because closing ends its simulation."""
@@ -147,7 +151,7 @@ def run_component(
     options = adapter_options(adapter, seed, noise, video)
     device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
     try:
-        chart = drive(cls, values, device, events, trace, progress, watch)
+        chart = drive(cls, values, device, events, trace, progress, watch, header)
         measure = getattr(device, "measurements", None)
         measured = dict(measure()) if measure is not None else {}
         if watch is not None:
@@ -187,5 +191,19 @@ def run_once(
     the generated code is imported again from the cache, never pickled."""
     cls = load_component(model, search_path)
     return run_component(
-        cls, params, adapter, seed, noise, trace, video, events=events, success=success
+        cls,
+        params,
+        adapter,
+        seed,
+        noise,
+        trace,
+        video,
+        events=events,
+        success=success,
+        header=run_header(model, search_path),
     )
+
+
+def run_header(model: Path, search_path: Sequence[Path]) -> dict[str, Any]:
+    """The first record of a trace file: the model it ran, so that a replay can draw it."""
+    return {"model": str(model.resolve()), "path": [str(p.resolve()) for p in search_path]}

@@ -11,12 +11,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from lightrocks.workbench.app.monitor.traces import read_trace
+
 FORMATS = (".png", ".html")
 LAYERS = ("skill", "action")
-
-
-class TraceError(ValueError):
-    """The file is not a trace this tool can read."""
+SIZE, DPI = (11, 8), 100
+"""The figure in inches and the PNG's pixels per inch: 1100 x 800 pixels."""
 
 
 @dataclass
@@ -38,21 +38,6 @@ class Recording:
     spans: list[Span] = field(default_factory=list)
     outcome: str | None = None
     end: float = 0.0
-
-
-def read_trace(path: Path) -> list[dict[str, Any]]:
-    records = []
-    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
-        if not line.strip():
-            continue
-        try:
-            record = json.loads(line)
-        except json.JSONDecodeError:
-            raise TraceError(f"{path}:{number}: not a JSON line") from None
-        if not isinstance(record, dict) or "time" not in record or "kind" not in record:
-            raise TraceError(f"{path}:{number}: not a trace record") from None
-        records.append(record)
-    return records
 
 
 def recording(records: list[dict[str, Any]]) -> Recording:
@@ -88,7 +73,7 @@ def figure(rec: Recording, title: str) -> Any:
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(11, 8), layout="constrained")
+    fig = Figure(figsize=SIZE, layout="constrained")
     axes = fig.subplots(3, 1, sharex=True)
     rows = (
         ("force [N]", rec.force, 1.0),
@@ -134,8 +119,15 @@ def figure(rec: Recording, title: str) -> Any:
     return fig
 
 
+def series(rec: Recording) -> str:
+    """The plotted samples as JSON, safe inside a script element, for whoever reads on."""
+    data = {"time": rec.times, "force": rec.force, "torque": rec.torque, "tcp": rec.tcp}
+    return json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+
+
 def page(rec: Recording, title: str, svg: str) -> str:
-    """One HTML file: the figure inline and the spans as a table; nothing is fetched."""
+    """One HTML file: the figure inline, its samples as data and the spans as a table;
+    nothing is fetched."""
     rows = "\n".join(
         f"<tr><td>{html.escape(s.layer)}</td><td>{html.escape(s.name)}</td>"
         f"<td>{s.start:.3f}</td><td>{s.end:.3f}</td></tr>"
@@ -150,6 +142,7 @@ td,th{{border:1px solid #ccc;padding:2px 8px;text-align:left}}</style></head>
 <p>Outcome: <strong id="outcome">{outcome}</strong> at {rec.end:.3f} s;
 {len(rec.times)} samples.</p>
 {svg}
+<script type="application/json" id="series">{series(rec)}</script>
 <table id="spans"><tr><th>layer</th><th>state</th><th>from [s]</th><th>to [s]</th></tr>
 {rows}
 </table></body></html>
@@ -164,7 +157,7 @@ def plot(trace: Path, output: Path) -> Recording:
     title = f"{trace.name}: outcome {rec.outcome or 'unfinished'}"
     fig = figure(rec, title)
     buffer = io.BytesIO() if output.suffix == ".png" else io.StringIO()
-    fig.savefig(buffer, format=output.suffix[1:] if output.suffix == ".png" else "svg")
+    fig.savefig(buffer, format=output.suffix[1:] if output.suffix == ".png" else "svg", dpi=DPI)
     if output.suffix == ".png":
         tmp = output.with_name(f".{output.name}.tmp")
         tmp.write_bytes(buffer.getvalue())

@@ -10,6 +10,7 @@ import asyncio
 import secrets
 import threading
 import time
+from contextlib import suppress
 from dataclasses import dataclass, field
 from importlib.resources import files
 from typing import Any
@@ -38,6 +39,8 @@ class Monitor:
     token: str = field(default_factory=lambda: secrets.token_urlsafe(16))
     summary: dict[str, Any] = field(default_factory=dict)
     """Outcome and measurements once the run is over."""
+    replay: list[dict[str, Any]] | None = None
+    """A recorded run's records, for a page that replays it instead of watching a run."""
     sent: dict[int, int] = field(default_factory=dict)
     """The number of the last record pushed to each open page (0 until the run is over)."""
 
@@ -71,6 +74,8 @@ class Monitor:
         async def control(request: Request) -> Response:
             if not allowed(request):
                 return JSONResponse({"error": "a valid token is needed"}, status_code=403)
+            if self.replay is not None:
+                return JSONResponse({"error": "a replay has no run to control"}, status_code=409)
             action = request.path_params["action"]
             c = self.control
             if action == "pause":
@@ -92,6 +97,12 @@ class Monitor:
                 await socket.close(code=1008)
                 return
             await socket.accept()
+            if self.replay is not None:
+                await socket.send_json({"title": self.title, "replay": self.replay})
+                with suppress(Exception):  # until the page goes away
+                    while True:
+                        await socket.receive_text()
+                return
             await socket.send_json({"title": self.title, "history": self.feed.history})
             number, _ = self.feed.since(0)
             try:

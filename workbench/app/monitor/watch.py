@@ -86,3 +86,11 @@ def monitor_for(
     feed = Feed()
     monitor = Monitor(feed, control, task_svg(model, search_path, name), name)
     return monitor, Watch(monitor)
+
+
+def replay_for(
+    model: Path, search_path: list[Path], name: str, records: list[dict[str, Any]]
+) -> Monitor:
+    """A monitor that replays recorded records instead of watching a run."""
+    svg = task_svg(model, search_path, name)
+    return Monitor(Feed(), RunControl(), svg, f"{name} (replay)", replay=records)

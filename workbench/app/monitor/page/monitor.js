@@ -1,9 +1,16 @@
 // The monitor page: highlights the active path, plots the samples, logs the trace.
 const token = new URLSearchParams(location.search).get("token");
 const query = "?token=" + encodeURIComponent(token);
-const samples = { force: [], torque: [], tcp: [] };
 const WINDOW = 2000;
-let active = [];
+let samples, active;
+
+function reset() {
+  samples = { force: [], torque: [], tcp: [] };
+  active = [];
+  document.getElementById("log").replaceChildren();
+  document.getElementById("command").textContent = "none";
+  document.getElementById("summary").textContent = "running";
+}
 
 function title(g) {
   const t = g.querySelector("title");
@@ -39,6 +46,8 @@ function apply(record) {
       `${record.state} stopped: ${record.outcome}`;
   } else if (record.kind === "finished") {
     document.getElementById("summary").textContent = "outcome: " + record.outcome;
+  } else if (record.kind === "aborted") {
+    document.getElementById("command").textContent = "aborted in " + record.active.join(" / ");
   }
   if (record.kind === "sample") {
     for (const [key, value] of Object.entries(record)) {
@@ -108,11 +117,52 @@ async function start() {
   socket.onmessage = message => {
     const data = JSON.parse(message.data);
     if (data.title) document.getElementById("title").textContent = data.title;
+    if (data.replay) { replay(data.replay); return; }
     (data.history || []).forEach(apply);
     (data.records || []).forEach(apply);
     if (data.status) showStatus(data.status);
-    highlight();
-    for (const [id, list] of Object.entries(samples)) draw(id, list);
+    redraw();
   };
 }
+
+function redraw() {
+  highlight();
+  for (const [id, list] of Object.entries(samples)) draw(id, list);
+}
+
+// A recorded run: the slider picks a simulated time and the page shows the run up to it.
+function replay(records) {
+  document.getElementById("controls").hidden = true;
+  document.getElementById("replay").hidden = false;
+  const slider = document.getElementById("slider"), play = document.getElementById("play");
+  const end = records.length ? records[records.length - 1].time : 0;
+  slider.max = end;
+  slider.step = "any";
+  const show = () => {
+    const until = Number(slider.value);
+    reset();
+    records.filter(r => r.time <= until).forEach(apply);
+    document.getElementById("at").textContent = until.toFixed(3) + " s of " + end.toFixed(3) + " s";
+    redraw();
+  };
+  slider.addEventListener("input", show);
+  let timer = null;
+  play.addEventListener("click", () => {
+    if (timer) { clearInterval(timer); timer = null; play.textContent = "Play"; return; }
+    if (Number(slider.value) >= end) slider.value = 0;
+    play.textContent = "Stop";
+    let last = performance.now();
+    timer = setInterval(() => {
+      const now = performance.now();
+      slider.value = Math.min(end, Number(slider.value) + (now - last) / 1000);
+      last = now;
+      show();
+      if (Number(slider.value) >= end) play.click();
+    }, 100);
+  });
+  slider.value = end;
+  show();
+}
+
+reset();
 start();
