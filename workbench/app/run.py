@@ -127,6 +127,8 @@ class RunResult:
     fault: str
     active: tuple[str, ...]
     """The active configuration when the run did not finish."""
+    video: str = ""
+    """Where the adapter's video went."""
 
 
 def run_component(
@@ -160,6 +162,7 @@ def run_component(
         if device is not None:
             device.close()
     summary = summarize(chart)
+    video_written = getattr(device, "video_written", "")
     # a plain chart without final state succeeds by resting without error
     succeeded = summary.outcome != "error" if wanted is None else summary.outcome == wanted
     return RunResult(
@@ -171,6 +174,7 @@ def run_component(
         measured,
         summary.fault,
         () if chart.finished else chart.active_configuration,
+        video_written,
     )
 
 
