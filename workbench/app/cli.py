@@ -242,6 +242,14 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--paused", action="store_true", help="wait for Resume or Step on the page (--monitor)"
     )
+    parser.add_argument(
+        "--abort-at",
+        dest="aborts",
+        action="append",
+        default=[],
+        metavar="Q.NAME",
+        help="abort safely on entering this state (with --monitor); repeatable",
+    )
     _path_option(parser)
 
 
@@ -266,8 +274,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--workers needs --seeds and must be at least 1")
     if args.seeds is not None and args.video:
         raise UsageError("--video records a single run: leave out --seeds")
-    if (args.breakpoints or args.paused) and not args.monitor:
-        raise UsageError("--break and --paused need --monitor")
+    if (args.breakpoints or args.paused or args.aborts) and not args.monitor:
+        raise UsageError("--break, --abort-at and --paused need --monitor")
     if args.monitor and args.seeds is not None:
         raise UsageError("--monitor watches a single run: leave out --seeds")
     try:
@@ -320,7 +328,9 @@ def _monitor(args: argparse.Namespace, model: Path, search_path: list[Path], nam
     from lightrocks.workbench.app.monitor.watch import monitor_for
 
     address = _monitor_address(args.monitor)
-    monitor, watch = monitor_for(model, search_path, name, args.breakpoints, args.paused)
+    monitor, watch = monitor_for(
+        model, search_path, name, args.breakpoints, args.paused, args.aborts
+    )
     _serve(monitor, address)
     return watch
 

@@ -28,8 +28,12 @@ def place(record: dict[str, Any]) -> str:
 
 
 class RunControl:
-    def __init__(self, breakpoints: Iterable[str] = (), paused: bool = False) -> None:
+    def __init__(
+        self, breakpoints: Iterable[str] = (), paused: bool = False, aborts: Iterable[str] = ()
+    ) -> None:
         self.breakpoints = {state_path(b) for b in breakpoints}
+        self.aborts = {state_path(a) for a in aborts}
+        """Where the run is aborted as soon as it gets there."""
         self._running = threading.Event()
         self._stepping = False
         self.aborting = False
@@ -72,8 +76,12 @@ class RunControl:
     # -- asked by the run's thread --------------------------------------------------------
 
     def stops_at(self, record: dict[str, Any]) -> bool:
-        """Whether the run pauses at this record: a breakpoint, or the end of a step."""
+        """Whether the run pauses at this record: a breakpoint, or the end of a step; at an
+        abort point the run is aborted instead."""
         where = place(record)
+        if where in self.aborts:
+            self.abort()
+            return False
         if not where or not (where in self.breakpoints or self._stepping):
             return False
         self._stepping = False

@@ -81,8 +81,9 @@ def monitor_for(
     name: str,
     breakpoints: Iterable[str] = (),
     paused: bool = False,
+    aborts: Iterable[str] = (),
 ) -> tuple[Monitor, Watch]:
-    control = RunControl(breakpoints, paused)
+    control = RunControl(breakpoints, paused, aborts)
     feed = Feed()
     monitor = Monitor(feed, control, task_svg(model, search_path, name), name)
     return monitor, Watch(monitor)
