@@ -31,7 +31,7 @@ CHROMEDRIVER = os.environ.get("CHROMEDRIVER", shutil.which("chromedriver") or ""
 WAIT = 300.0
 """Seconds a page may take to show what is expected (a limit, not a measurement)."""
 HIGHLIGHT = (1.0, 0.953, 0.769)
-"""The fill of an active skill's cluster (#fff3c4 in index.html)."""
+"""The fill of the innermost active cluster (#fff3c4 in index.html)."""
 
 
 @pytest.fixture
@@ -171,7 +171,9 @@ def test_step_breakpoint_and_abort(adapter: str, launch, browser, tmp_path: Path
     page.press("resume")
     page.until(lambda: page.text("state") == "paused at ScrewTask/DriveIn")
     assert page.active == "ScrewTask/DriveIn"
-    assert "active" in drive_in.get_attribute("class")
+    assert "current" in drive_in.get_attribute("class")
+    assert "current" not in page.cluster("ScrewTask").get_attribute("class")
+    assert "active" in page.cluster("ScrewTask").get_attribute("class")
     assert "active" not in page.cluster("ScrewTask/FindScrew").get_attribute("class")
     assert_shows_the_run(page.screenshot(tmp_path / f"monitor-{adapter}.png"))
     assert process.poll() is None, "the run ended while paused"
@@ -216,6 +218,7 @@ def test_breakpoint_from_the_command_line_and_resume_to_the_end(launch, browser)
     assert page.active == "ScrewTask/HoldOverHole"
     page.press("resume")
     page.until(lambda: page.text("summary") == "outcome: screwed")
+    page.until(lambda: page.text("state") == "run over")
     assert process.wait(timeout=WAIT) == 0
     run = records(trace)
     assert [r.get("at") for r in run if r["kind"] == "paused"] == ["ScrewTask/HoldOverHole"]
@@ -223,7 +226,8 @@ def test_breakpoint_from_the_command_line_and_resume_to_the_end(launch, browser)
 
 
 def assert_shows_the_run(png: Path) -> None:
-    """A screenshot of the page is not blank and shows an active skill highlighted."""
+    """A screenshot of the page is not blank and shows the innermost active state filled,
+    on a small part of the picture only (not the whole task)."""
     from matplotlib.image import imread
 
     pixels = imread(png)[..., :3]
@@ -231,6 +235,7 @@ def assert_shows_the_run(png: Path) -> None:
     assert pixels.std() > 0.05, "the screenshot is blank"
     highlighted = (abs(pixels - HIGHLIGHT).max(axis=2) < 0.03).sum()
     assert highlighted > 100, "no highlighted state in the screenshot"
+    assert highlighted < 0.15 * pixels.shape[0] * pixels.shape[1], "more than one state filled"
 
 
 def active_at(run: list[dict], time: float) -> str:

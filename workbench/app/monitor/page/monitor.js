@@ -18,9 +18,14 @@ function title(g) {
 }
 const CLICKABLE = "#task g.node, #task g.cluster, #task g.edge";
 
+// Every active state drawn gets an outline; the innermost one drawn is filled as well.
 function highlight() {
-  document.querySelectorAll("#task g.node, #task g.cluster").forEach(g => {
+  const groups = [...document.querySelectorAll("#task g.node, #task g.cluster")];
+  let current = null;
+  for (const path of active) current = groups.find(g => title(g) === path) || current;
+  groups.forEach(g => {
     g.classList.toggle("active", active.includes(title(g)));
+    g.classList.toggle("current", g === current);
   });
   document.getElementById("task").dataset.active = active[active.length - 1] || "";
 }
@@ -89,8 +94,8 @@ function draw(id, list) {
 }
 
 function showStatus(status) {
-  document.getElementById("state").textContent =
-    (status.paused ? "paused" : "running") + (status.where ? " at " + status.where : "");
+  document.getElementById("state").textContent = status.measurements ? "run over"
+    : (status.paused ? "paused" : "running") + (status.where ? " at " + status.where : "");
   document.body.dataset.paused = status.paused;
   markBreakpoints(status.breakpoints || []);
   if (status.measurements) {
