@@ -19,7 +19,7 @@ demo: $(STAMP)
 	$(BIN)/lightrocks run examples/screwing/tasks/ScrewTask.lr --adapter mujoco
 
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n auto --dist worksteal
 
 bench: $(STAMP)
 	$(INSTALL) -e '.[dev,bench]'
