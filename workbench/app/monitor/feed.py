@@ -16,14 +16,21 @@ class Feed:
         self._numbers = itertools.count(1)
         self.last = 0
         """The number of the newest record."""
-        self.history: list[dict[str, Any]] = []
+        self._history: list[tuple[int, dict[str, Any]]] = []
         """Every state-level record (no samples), so a late page can rebuild the view."""
 
     def publish(self, record: dict[str, Any]) -> None:
-        self.last = next(self._numbers)
-        self._records.append((self.last, record))
+        number = next(self._numbers)
+        self._records.append((number, record))
         if record["kind"] != "sample":
-            self.history.append(record)
+            self._history.append((number, record))
+        self.last = number
+
+    def history(self) -> tuple[int, list[dict[str, Any]]]:
+        """The state-level records so far and the number of the last one, to go on from
+        with ``since`` without missing or repeating a record."""
+        copied = self._history.copy()
+        return (copied[-1][0] if copied else 0), [r for _, r in copied]
 
     def since(self, number: int) -> tuple[int, list[dict[str, Any]]]:
         """Records after ``number`` and the number of the last one."""

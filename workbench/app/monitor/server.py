@@ -103,8 +103,8 @@ class Monitor:
                     while True:
                         await socket.receive_text()
                 return
-            await socket.send_json({"title": self.title, "history": self.feed.history})
-            number, _ = self.feed.since(0)
+            number, history = self.feed.history()
+            await socket.send_json({"title": self.title, "history": history})
             try:
                 while True:
                     over = bool(self.summary)
