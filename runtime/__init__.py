@@ -25,6 +25,7 @@ from lightrocks.runtime.executor import (
     UnknownEvent,
 )
 from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
+from lightrocks.runtime.safety import Bound, SafeRange
 from lightrocks.runtime.states import (
     Action,
     Choice,
@@ -50,6 +51,7 @@ __all__ = [
     "Adapter",
     "AdapterError",
     "BindingError",
+    "Bound",
     "Cell",
     "Choice",
     "CommandResult",
@@ -63,6 +65,7 @@ __all__ = [
     "Final",
     "Frame",
     "Invariant",
+    "SafeRange",
     "SceneObject",
     "Snapshot",
     "State",

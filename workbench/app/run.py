@@ -13,6 +13,7 @@ from typing import Any
 from lightrocks.workbench.app.adapter_factory import adapter_for, adapter_options, scene_of
 from lightrocks.workbench.app.errors import RunError
 from lightrocks.workbench.app.loading import load_component
+from lightrocks.workbench.app.script import Script
 from lightrocks.workbench.app.values import Noise, parameters, parse_delay
 
 
@@ -111,6 +112,10 @@ def drive(
                 chart.advance(step)
     finally:
         recorder.close()
+    if recorder.failure is not None:
+        trace.unlink(missing_ok=True)  # never leave a cut-off trace behind
+        reason = recorder.failure.strerror or recorder.failure
+        raise RunError(f"--trace: cannot write {trace}: {reason} (the run went on without it)")
     return chart
 
 
@@ -143,6 +148,7 @@ def run_component(
     events: Sequence[str] = (),
     success: str | None = None,
     progress: Callable[[dict[str, Any]], None] | None = None,
+    script: Script | None = None,
     watch: Any = None,
     header: Mapping[str, Any] | None = None,
 ) -> RunResult:
@@ -150,7 +156,7 @@ def run_component(
     because closing ends its simulation."""
     wanted = success_outcome(cls, success)
     values = parameters(cls, params)
-    options = adapter_options(adapter, seed, noise, video)
+    options = adapter_options(adapter, seed, noise, video, script)
     device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
     try:
         chart = drive(cls, values, device, events, trace, progress, watch, header)
@@ -190,6 +196,7 @@ def run_once(
     *,
     events: Sequence[str] = (),
     success: str | None = None,
+    script: Script | None = None,
 ) -> RunResult:
     """One run from picklable inputs only, so that a worker process can do it on its own:
     the generated code is imported again from the cache, never pickled."""
@@ -204,6 +211,7 @@ def run_once(
         video,
         events=events,
         success=success,
+        script=script,
         header=run_header(model, search_path),
     )
 
