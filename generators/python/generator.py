@@ -102,6 +102,22 @@ def python_type(t: Type | None) -> str:
     return "Any"
 
 
+def value_type(t: Type | None) -> tuple:
+    """What a run parameter of model type ``t`` accepts, as plain data for the generated
+    class (``PARAMETER_TYPES``): kind, type name, and the dimension exponents of its
+    numbers (one for a quantity, one per element for a vector)."""
+    if isinstance(t, QuantityT):
+        kind = "integer" if t.name == "Integer" else "quantity"
+        return (kind, t.name, (t.dimension.exponents,))
+    if isinstance(t, VectorT) and all(isinstance(e, QuantityT) for e in t.elements):
+        return ("vector", t.name, tuple(e.dimension.exponents for e in t.elements))
+    if t == BOOLEAN:
+        return ("boolean", "Boolean", ())
+    if t == STRING:
+        return ("string", "String", ())
+    return ("other", str(t), ())
+
+
 def seconds(text: str | None) -> float | None:
     """A ``<<timeout="5 s">>`` value in seconds."""
     if not text:
@@ -247,6 +263,11 @@ class Builder:
             view.constants.append(f"EVENTS = {_tuple(repr(e) for e in region.events)}")
         mapping = ", ".join(f"{n!r}: {identifier(n)!r}" for n in region.parameters)
         view.constants.append(f"PARAMETERS: ClassVar[dict[str, str]] = {{{mapping}}}")
+        declared_types = {
+            name: value_type(self.typing.types.resolve(region.loaded, parameter.type))
+            for name, parameter in region.parameters.items()
+        }
+        view.constants.append(f"PARAMETER_TYPES: ClassVar[dict[str, tuple]] = {declared_types!r}")
         scope = Scope(self.typing, region)
         for parameter in region.parameters.values():
             declared = self.typing.types.resolve(region.loaded, parameter.type)

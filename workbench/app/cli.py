@@ -49,10 +49,36 @@ class UsageError(Exception):
 
 
 def existing_paths(paths: Sequence[str]) -> list[Path]:
+    """The given files and folders; anything else (a FIFO, a device) is never read."""
     missing = [p for p in paths if not Path(p).exists()]
     if missing:
         raise UsageError(f"no such file or folder: {', '.join(missing)}")
+    special = [p for p in paths if not (Path(p).is_file() or Path(p).is_dir())]
+    if special:
+        raise UsageError(f"not a regular file or folder: {', '.join(special)}")
     return [Path(p) for p in paths]
+
+
+def statechart_file(path: str) -> Path:
+    """The one ``.lr`` file ``run`` takes."""
+    [model] = existing_paths([path])
+    if model.is_dir():
+        raise UsageError(f"{path} is a folder: run takes one statechart file (.lr)")
+    if model.suffix != ".lr":
+        raise UsageError(f"{path} is not a statechart file (.lr): run takes one")
+    return model.resolve()
+
+
+def trace_file(path: str | None) -> Path | None:
+    """Where ``--trace`` writes: a new or regular file in an existing folder."""
+    if path is None:
+        return None
+    trace = Path(path)
+    if trace.exists() and not trace.is_file():
+        raise UsageError(f"--trace: {path} is not a regular file")
+    if not trace.parent.is_dir():
+        raise UsageError(f"--trace: no such folder: {trace.parent}")
+    return trace
 
 
 def _path_option(parser: argparse.ArgumentParser) -> None:
@@ -213,11 +239,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.run import run_component, success_outcome
     from lightrocks.workbench.app.seeds import run_seeds
 
-    model = existing_paths([args.model])[0].resolve()
+    model = statechart_file(args.model)
     search_path = existing_paths(args.path)
-    trace = Path(args.trace) if args.trace else None
-    if trace is not None and not trace.parent.is_dir():
-        raise UsageError(f"--trace: no such folder: {trace.parent}")
+    trace = trace_file(args.trace)
     events = [e.strip() for e in args.events.split(",") if e.strip()]
     if args.seeds is not None and args.seeds < 1:
         raise UsageError("--seeds must be at least 1")

@@ -18,9 +18,10 @@ from types import ModuleType
 from lightrocks.generators.python import GENERATOR
 from lightrocks.generators.python.generator import module_path
 from lightrocks.generators.python.names import identifier
+from lightrocks.metamodel import ast
 from lightrocks.workbench import report
 from lightrocks.workbench.app import cache
-from lightrocks.workbench.app.errors import ModelError
+from lightrocks.workbench.app.errors import ModelError, RunError
 from lightrocks.workbench.check import CheckContext, all_cocos, check
 from lightrocks.workbench.generators import GenerationRequest
 
@@ -82,7 +83,10 @@ def load_component(model: Path, search_path: Sequence[Path]) -> type:
     context = check([model], list(search_path))
     if context.diagnostics.has_errors:
         raise ModelError(report.text(context.diagnostics.items, all_cocos()))
-    unit = next(u.unit for u in context.workspace.loaded_units() if u.path == model.resolve())
+    units = [u.unit for u in context.workspace.loaded_units() if u.path == model.resolve()]
+    if not units or not isinstance(units[0], ast.StatechartUnit):
+        raise RunError(f"{model} holds no statechart")
+    unit = units[0]
     name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
     package = generated_package(context, [model.resolve()], cache_root())
     return component_class(package, name)

@@ -85,7 +85,10 @@ def drive(
             bind(adapter, cls.CELL)
     except BindingError as error:
         raise RunError(str(error)) from None
-    recorder = Trace(trace)
+    try:
+        recorder = Trace(trace)
+    except OSError as error:
+        raise RunError(f"--trace: cannot write {trace}: {error.strerror or error}") from None
     if progress is not None:
         recorder.listeners.append(progress)
     try:
