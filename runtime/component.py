@@ -15,7 +15,7 @@ from lightrocks.runtime.binding import bind
 from lightrocks.runtime.contract import Adapter, Snapshot
 from lightrocks.runtime.environment import Environment
 from lightrocks.runtime.executor import Executor, Fault, known_events
-from lightrocks.runtime.states import Action, Composite
+from lightrocks.runtime.states import Action, Composite, Parallel
 from lightrocks.runtime.trace import Record, Trace
 
 
@@ -120,6 +120,10 @@ class Component:
 
 class CompositeComponent(Component, Composite):
     """A task, skill or plain statechart."""
+
+
+class ParallelComponent(Component, Parallel):
+    """A task, skill or plain statechart whose body is made of orthogonal regions."""
 
 
 class ActionComponent(Component, Action):

@@ -55,6 +55,7 @@ class Region:
     actions: list[ast.Action] = field(default_factory=list)
     invariants: list[ast.Invariant] = field(default_factory=list)
     parent: Region | None = None
+    orthogonal: bool = False  # its states are regions, active together
 
     @property
     def start_conditions(self) -> list[ast.Condition]:
@@ -66,8 +67,14 @@ class Region:
 
     @property
     def outcomes(self) -> tuple[str, ...]:
-        finals = [s.name for s in self.states.values() if s.state.is_final]
-        return tuple(c.name for c in self.end_conditions) + tuple(finals)
+        """End conditions and final states; when all regions of an orthogonal state are
+        final it completes with the final state of its first region."""
+        ends = tuple(c.name for c in self.end_conditions)
+        if self.orthogonal:
+            first = next(iter(self.states.values()), None)
+            inner = first.region if first is not None else None
+            return ends + (inner.outcomes if inner is not None else ())
+        return ends + tuple(s.name for s in self.states.values() if s.state.is_final)
 
     def regions(self) -> list[Region]:
         """This region and every composite-state region inside it, depth first."""
@@ -216,6 +223,7 @@ class ModelSet:
             region.pseudostates.update(base.pseudostates)
             region.internal.extend(base.internal)
             region.invariants.extend(base.invariants)
+            region.orthogonal = base.orthogonal
             if base.events is not None:
                 region.events = dict(base.events)
         own_actions: list[ast.Action] = []
@@ -226,6 +234,10 @@ class ModelSet:
                 region.conditions[element.name] = element
             elif isinstance(element, ast.State):
                 region.states[element.name] = self._state(element, loaded, region, owner)
+            elif isinstance(element, ast.Region):
+                region.orthogonal = True
+                state = ast.State(element.name, body=element.elements, position=element.position)
+                region.states[element.name] = self._state(state, loaded, region, owner)
             elif isinstance(element, ast.Transition):
                 index = inherited.pop((element.source, element.stimulus), None)
                 if index is None:
