@@ -21,6 +21,7 @@ import pinocchio as pin
 from lightrocks.runtime.contract import (
     TIMEOUT,
     AdapterError,
+    Command,
     CommandResult,
     StopCondition,
     Vector3,
@@ -108,41 +109,60 @@ class DryRunAdapter:
         stop: Sequence[StopCondition],
         budget: float,
     ) -> CommandResult:
-        if command not in self._commands.get(device, ()):
-            raise AdapterError(f"unknown command {device}.{command}")
-        self.calls.append((device, command, dict(args)))
-        scripted = self._outcomes.get(f"{device}.{command}") or []
-        planned = scripted.pop(0) if scripted else None
-        if planned == "error":
-            raise AdapterError(f"scripted fault of {device}.{command}")
-        state = self._state[device]
-        for flag in ("goalReached", "done"):
-            if flag in state:
-                state[flag] = False
-        start, value = self._time, None
+        return self.execute_all([Command(device, command, args, stop, budget)])[0]
+
+    def execute_all(self, commands: Sequence[Command]) -> list[CommandResult]:
+        """Tick the commands together, each until its own stop condition or budget."""
+        devices = [c.device for c in commands]
+        if len(set(devices)) < len(devices):
+            raise AdapterError(f"two commands at once for one device: {devices}")
+        runs = [self._run(c) for c in commands]
+        results: list[CommandResult | None] = [None] * len(runs)
+        start = self._time
         try:
-            while True:
+            while None in results:
                 self._time = round(self._time + self.step, 9)
-                elapsed = self._time - start
-                settled = elapsed >= self.duration - 1e-9
-                if settled:
-                    value = self._settle(device, command, args)
-                if settled and planned not in (None, TIMEOUT):
-                    return CommandResult(planned, value)
-                if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
-                    if elapsed >= budget - 1e-9:
-                        return CommandResult(TIMEOUT)
-                    continue
-                snapshot = self.snapshot()
-                for condition in stop:
-                    if condition.holds(snapshot):
-                        return CommandResult(condition.name, value)
-                if elapsed >= budget - 1e-9:
-                    return CommandResult(TIMEOUT)
+                for index, run in enumerate(runs):
+                    if results[index] is None:
+                        results[index] = run(self._time - start)
         except AdapterError:
             raise
         except Exception as exc:
-            raise AdapterError(f"stop condition of {device}.{command} failed: {exc!r}") from exc
+            raise AdapterError(f"stop condition failed: {exc!r}") from exc
+        return results  # type: ignore[return-value]
+
+    def _run(self, c: Command) -> Callable[[float], CommandResult | None]:
+        """Start one command; the returned function ticks it and tells how it ended."""
+        if c.command not in self._commands.get(c.device, ()):
+            raise AdapterError(f"unknown command {c.device}.{c.command}")
+        self.calls.append((c.device, c.command, dict(c.args)))
+        scripted = self._outcomes.get(f"{c.device}.{c.command}") or []
+        planned = scripted.pop(0) if scripted else None
+        if planned == "error":
+            raise AdapterError(f"scripted fault of {c.device}.{c.command}")
+        state = self._state[c.device]
+        for flag in ("goalReached", "done"):
+            if flag in state:
+                state[flag] = False
+        value = None
+
+        def tick(elapsed: float) -> CommandResult | None:
+            nonlocal value
+            settled = elapsed >= self.duration - 1e-9
+            if settled and value is None:
+                value = self._settle(c.device, c.command, c.args)
+            if settled and planned not in (None, TIMEOUT):
+                return CommandResult(planned, value)
+            if planned != TIMEOUT:  # scripted timeout: no stop condition holds until the budget
+                snapshot = self.snapshot()
+                for condition in c.stop:
+                    if condition.holds(snapshot):
+                        return CommandResult(condition.name, value)
+            if elapsed >= c.budget - 1e-9:
+                return CommandResult(TIMEOUT)
+            return None
+
+        return tick
 
     def _settle(self, device: str, command: str, args: Mapping[str, Any]) -> Any:
         """The idealised end state of a command; returns the command's value."""

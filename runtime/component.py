@@ -98,6 +98,12 @@ class Component:
         return tuple(state.name for state in self._running.active())
 
     @property
+    def active_paths(self) -> tuple[str, ...]:
+        """Paths of the active states (``Chart/Composite/Child``): with orthogonal regions
+        the configuration is a tree, which names alone do not show."""
+        return tuple(state.path for state in self._running.active())
+
+    @property
     def trace(self) -> list[Record]:
         return self._running.trace.records
 
