@@ -77,6 +77,33 @@ import r.Cell;
 }
 """
 
+WATCH = """package r;
+
+import r.Cell;
+
+<<skill>> statechart Watch {
+  end condition done;
+  end condition failed;
+
+  initial state Work {
+    region Hand {
+      <<import="Move">> initial state Reach;
+      final state Reached;
+      Reach -> Reached reached;
+    }
+
+    region Clock {
+      initial state Tick;
+      final state Rang;
+      Tick -> Rang after(200 ms);
+    }
+  }
+
+  Work -> done Reached;
+  Work -> failed error;
+}
+"""
+
 SWITCH = """package r;
 
 statechart Switch {
@@ -123,7 +150,7 @@ def build(tmp_path: Path):
     def make(name: str) -> type:
         (tmp_path / "r").mkdir(exist_ok=True)
         models = {"Cell.lrd": DOMAIN, "Move.lr": MOVE, "Look.lr": LOOK}
-        models |= {"Both.lr": BOTH, "Switch.lr": SWITCH}
+        models |= {"Both.lr": BOTH, "Switch.lr": SWITCH, "Watch.lr": WATCH}
         for file, text in models.items():
             (tmp_path / "r" / file).write_text(text)
         context = check([tmp_path])
@@ -236,3 +263,17 @@ def test_an_adapter_that_runs_one_command_at_a_time_ends_the_regions_in_error(bu
     assert chart.outcome == "failed"
     errors = [r for r in chart.trace if r["kind"] == "error"]
     assert errors[0]["message"] == "the adapter cannot run commands of several regions at once"
+
+
+def test_a_time_event_of_one_region_stops_the_command_of_another_which_starts_again(
+    build,
+) -> None:
+    adapter = DryRunAdapter(duration=0.5, step=0.01)
+    chart = build("Watch")().start(adapter)
+    assert chart.outcome == "done"
+    stops = [r["outcome"] for r in chart.trace if r["kind"] == "stop"]
+    assert stops == ["@timer", "reached"]
+    assert [call[:2] for call in adapter.calls] == [("arm", "move"), ("arm", "move")]
+    assert adapter.time == pytest.approx(0.7)  # stopped at 0.2 s, then 0.5 s again
+    rang = next(r for r in chart.trace if r["kind"] == "enter" and r["state"].endswith("Rang"))
+    assert rang["time"] == pytest.approx(0.2)
