@@ -379,6 +379,7 @@ class ComponentBuilder:
 
     def build(self) -> Block:
         block, region = self.block, self.region
+        self._refuse_unmapped()
         block.externals = [Variable(v.name, v.type) for v in self.unit.cell_members.values()]
         self.execute = self.names.claim("execute")
         block.inputs.append(Variable(self.execute, "BOOL", comment="TRUE runs, FALSE resets"))
@@ -411,6 +412,32 @@ class ComponentBuilder:
             block.inputs.append(Variable(variable, "BOOL", comment=f"event {name}: one cycle"))
         block.events = dict(self.events)
         return block
+
+    def _refuse_unmapped(self) -> None:
+        """Constructs the SFC mapping does not cover yet end generation with their place,
+        instead of a network that would mean something else."""
+        for region in self.region.regions():
+            found = [
+                (p.position, f"{p.kind} pseudostate '{p.name}'")
+                for p in region.pseudostates.values()
+            ]
+            found += [(t.position, "internal transition") for t in region.internal]
+            found += [
+                (t.position, "time event after(…)")
+                for t in region.transitions
+                if t.delay is not None
+            ]
+            found += [
+                (t.position, "entry through history")
+                for t in region.transitions
+                if t.target_history
+            ]
+            if found:
+                position, what = min(found, key=lambda item: (item[0].line, item[0].column))
+                raise GenerationError(
+                    f"{position}: {self.component.qualified_name}: the SFC target does not map "
+                    f"a {what} yet"
+                )
 
     def _nodes(self, region: Region, parent: Node | None) -> list[Node]:
         nodes = []

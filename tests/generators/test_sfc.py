@@ -138,3 +138,24 @@ def test_names_of_different_kinds_never_meet(claims: list[tuple[str, int, str]])
         for scope in range(-1, 3):
             in_scope = [n for s, n in names if s == scope]
             assert len(in_scope) == len(set(in_scope))
+
+
+@pytest.mark.parametrize(
+    ("body", "what"),
+    [
+        ("choice C; A -> C go; C -> B [n > 0]; C -> A;", "choice pseudostate 'C'"),
+        ("A -> B after(2 s);", "time event"),
+        ("A -> B go; B -> A back;", ""),
+    ],
+)
+def test_constructs_without_sfc_mapping_are_refused(tmp_path, body: str, what: str) -> None:
+    model = tmp_path / "Gate.lr"
+    model.write_text(
+        "statechart Gate {\n  parameters { Integer n = 0; }\n  initial state A;\n  state B;\n"
+        f"  {body}\n}}\n"
+    )
+    if not what:
+        assert "FUNCTION_BLOCK Gate" in generate("sfc", [model], search=[tmp_path])["Gate.st"]
+        return
+    with pytest.raises(GenerationError, match=f"Gate.lr:5:.*does not map a {what}"):
+        generate("sfc", [model], search=[tmp_path])

@@ -56,16 +56,6 @@ def parse_value(text: str) -> Any:
     raise RunError(f"'{text}' is not a literal value")
 
 
-def parse_delay(text: str) -> float:
-    """``+500ms`` among ``--events``: how far to advance the virtual clock, in seconds."""
-    value = _literal(text.removeprefix("+"))
-    if not isinstance(value, ast.Quantity) or _dimension(value) != lookup("s").dimension:
-        raise RunError(f"'{text}' is not a time to wait: write it like +500ms")
-    if value.value < 0:
-        raise RunError(f"'{text}': time cannot go back")
-    return value.value
-
-
 def _integral(literal: ast.Quantity) -> bool:
     plain = not literal.unit and not any(c in literal.text for c in ".eE")
     return plain and float(literal.value).is_integer()
@@ -151,6 +141,16 @@ def _describe(text: str) -> str:
         ast.VectorLiteral: f"a vector of {len(getattr(literal, 'elements', ()))} values",
     }
     return f"{text} ({kinds.get(type(literal), 'an expression')})"
+
+
+def parse_delay(text: str) -> float:
+    """``+500ms`` among ``--events``: how far to advance the virtual clock, in seconds."""
+    value = _literal(text.removeprefix("+"))
+    if not isinstance(value, ast.Quantity) or _dimension(value) != lookup("s").dimension:
+        raise RunError(f"'{text}' is not a time to wait: write it like +500ms")
+    if value.value < 0:
+        raise RunError(f"'{text}': time cannot go back")
+    return value.value
 
 
 def parse_noise(text: str) -> Noise:
