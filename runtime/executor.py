@@ -571,7 +571,7 @@ class Executor:
             return self._error(actions[0], message, actions[0].LOCATION)
         dones: list[Done] = []
         for request, result in zip(requests, results, strict=True):
-            if isinstance(result, CommandResult) and result.outcome in (EVENT_STOP, TIMER_STOP):
+            if self._interrupted(result):
                 self._write("stop", state=request.action.path, outcome=result.outcome,
                             sensors={})  # fmt: skip
                 self._commands.append(request.action)  # again after the reaction, if active
@@ -579,6 +579,14 @@ class Executor:
                 dones.append(self._settled(request, result))
         self._queue.extend(dones[1:])
         return dones[0] if dones else None
+
+    def _interrupted(self, result: Any) -> bool:
+        """The command was stopped for an event or a time event that is really due."""
+        if not isinstance(result, CommandResult):
+            return False
+        if result.outcome == EVENT_STOP:
+            return bool(self.events)
+        return result.outcome == TIMER_STOP and self._due(self.time) is not None
 
     def _request(self, action: Action, s: Snapshot) -> _Request:
         """The command of ``action`` with its end conditions, the end conditions of every
