@@ -134,6 +134,29 @@ import actions.*;
 }
 """
 
+TWICE = """\
+package tasks;
+
+import skills.*;
+
+<<task>> statechart Twice {
+  end condition ok;
+  initial state Both {
+    region One {
+      <<import="Pick">> initial state First;
+      final state Done1;
+      First -> Done1;
+    }
+    region Two {
+      initial state Wait;
+      final state Done2;
+      Wait -> Done2 tick;
+    }
+  }
+  Both -> ok;
+}
+"""
+
 BASE: dict[str, str | bytes] = {
     "robots/Devices.lrd": DEVICES,
     "cell/Cell.lrd": CELL,
@@ -518,6 +541,19 @@ CASES: list[Case] = [
         bad={"skills/Twin.lr": replace(TWIN, "    region Far {", "    @@region Far {")},
         message="regions 'Near' and 'Far' both command 'arm'",
         hint="<<concurrent>>",
+    ),
+    Case(
+        "LR0220",
+        ok={"tasks/Twice.lr": TWICE},
+        bad={
+            "tasks/Twice.lr": replace(
+                replace(TWICE, "    region Two {", "    @@region Two {"),
+                "      initial state Wait;\n",
+                '      <<import="Pick">> initial state Wait;\n',
+            ).replace("Wait -> Done2 tick;", "Wait -> Done2;")
+        },
+        message="regions 'One' and 'Two' both command 'arm'",
+        variant="through-skills",
     ),
     # -- typing ------------------------------------------------------------------------------
     Case(
