@@ -211,12 +211,10 @@ class Executor:
                         state, outcome = done
                         complete = partial(self._complete, state, outcome)
                         done = self._guarded(complete, handling_error=outcome == ERROR)
-                if self._queue:
+                if self._queue:  # a completion of another region, unless it was left since
                     done = self._queue.popleft()
-                    if isinstance(done, Preemption):
-                        done = done if self._is_active(done.action) else None
-                    elif done is not None and not self._is_active(done[0]):
-                        done = None
+                    source = done.action if isinstance(done, Preemption) else done[0]
+                    done = done if self._is_active(source) else None
                     continue
                 done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
@@ -411,7 +409,7 @@ class Executor:
     def _join(state: Parallel) -> Done:
         """A region rests in a final state: once every region does, ``state`` completes
         with the final state of its first region."""
-        finals = [getattr(region, "current", None) for region in state.children.values()]
+        finals = [region.current for region in state.children.values()]
         if all(final is not None and final.FINAL for final in finals):
             return (state, finals[0].name)
         return None
@@ -528,16 +526,20 @@ class Executor:
         if self.adapter is None:
             return self._error(action, "no adapter bound to run a device command", action.LOCATION)
         request = self._request(action, s)
-        command = request.command
         try:
-            result = self.adapter.execute(
-                command.device, command.command, command.args, command.stop, command.budget
-            )
+            (result,) = self._call([request])
         except KeyboardInterrupt:
             raise
         except BaseException as exc:  # any adapter fault, SystemExit too
             return self._failed([request], exc)
         return self._settled(request, result)
+
+    def _call(self, requests: list[_Request]) -> list[Any]:
+        """One command through ``execute``, several at once through ``execute_all``."""
+        if len(requests) == 1:
+            c = requests[0].command
+            return [self.adapter.execute(c.device, c.command, c.args, c.stop, c.budget)]
+        return list(self.adapter.execute_all([request.command for request in requests]))
 
     def _run_commands(self) -> Done:
         """Run the commands of the actions entered in regions together, one per device."""
@@ -549,18 +551,13 @@ class Executor:
             return self._error(
                 actions[0], "no adapter bound to run a device command", actions[0].LOCATION
             )
-        run_all = getattr(self.adapter, "execute_all", None)
-        if run_all is None and len(actions) > 1:
+        if len(actions) > 1 and not hasattr(self.adapter, "execute_all"):
             message = "the adapter cannot run commands of several regions at once"
             return self._error(actions[0], message, actions[0].LOCATION)
         s = self.snapshot()
         requests = [self._request(action, s) for action in actions]
         try:
-            if len(requests) == 1:
-                c = requests[0].command
-                results = [self.adapter.execute(c.device, c.command, c.args, c.stop, c.budget)]
-            else:
-                results = list(run_all([request.command for request in requests]))
+            results = self._call(requests)
         except KeyboardInterrupt:
             raise
         except BaseException as exc:  # any adapter fault, SystemExit too
