@@ -7,6 +7,7 @@ import os
 import sys
 from collections.abc import Callable, Sequence
 from importlib.metadata import version
+from importlib.util import find_spec
 from pathlib import Path
 
 from rich.console import Console
@@ -16,7 +17,7 @@ from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import report
 from lightrocks.workbench.check import all_cocos, check
 from lightrocks.workbench.diagnostics import Diagnostics
-from lightrocks.workbench.files import write_atomic
+from lightrocks.workbench.files import write_atomic, write_tree
 from lightrocks.workbench.generators import (
     GenerationError,
     GenerationRequest,
@@ -289,6 +290,101 @@ def cmd_run(args: argparse.Namespace) -> int:
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
+
+
+def _configure_sweep(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser(
+        "sweep", help="run every combination of parameters and noise levels over seeds on Dask"
+    )
+    parser.add_argument("model", help="the .lr file of the statechart to run")
+    parser.add_argument("--adapter", help="adapter name (see 'list adapters'); none for plain")
+    parser.add_argument("--seeds", type=int, required=True, metavar="N", help="runs per point")
+    parser.add_argument("--seed", type=int, default=0, help="the first seed (default 0)")
+    parser.add_argument(
+        "--grid",
+        action="append",
+        default=[],
+        metavar="NAME=V1,V2,…",
+        help="values of a parameter to sweep (repeat for more parameters)",
+    )
+    parser.add_argument(
+        "--param", action="append", default=[], metavar="NAME=VALUE", help="fixed parameter value"
+    )
+    parser.add_argument(
+        "--perception-noise",
+        default="0mm,0deg",
+        metavar="L,A[;L,A…]",
+        help="noise levels to sweep, e.g. '0mm,0deg;2mm,2deg;3mm,3deg'",
+    )
+    parser.add_argument(
+        "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
+    )
+    parser.add_argument(
+        "--scheduler", metavar="ADDRESS", help="a running Dask scheduler (default: a local cluster)"
+    )
+    parser.add_argument(
+        "--workers", type=int, metavar="K", help="worker processes of the local cluster"
+    )
+    parser.add_argument(
+        "-o", "--output", default="sweep", help="folder for the tables and the plot (sweep)"
+    )
+    _path_option(parser)
+
+
+@command(_configure_sweep)
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from lightrocks.workbench.app import display, sweep, values
+    from lightrocks.workbench.app.adapter_factory import adapter_options
+    from lightrocks.workbench.app.errors import ModelError, RunError
+    from lightrocks.workbench.app.loading import load_component
+    from lightrocks.workbench.app.run import success_outcome
+
+    missing = [m for m in ("distributed", "pyarrow", "matplotlib") if not find_spec(m)]
+    if missing:
+        raise UsageError(f"sweep needs {', '.join(missing)}: pip install 'lightrocks[sweep]'")
+    model = statechart_file(args.model)
+    search_path = existing_paths(args.path)
+    output = Path(args.output)
+    if output.exists() and not output.is_dir():
+        raise UsageError(f"--output {output} is not a folder")
+    if args.seeds < 1:
+        raise UsageError("--seeds must be at least 1")
+    if args.workers is not None and (args.workers < 1 or args.scheduler is not None):
+        raise UsageError("--workers sizes the local cluster: at least 1, without --scheduler")
+    try:
+        noises = [values.parse_noise(level) for level in args.perception_noise.split(";")]
+        grid = sweep.parse_grid(args.grid)
+        cls = load_component(model, search_path)
+        wanted = success_outcome(cls, args.success)
+        points = sweep.grid_points(grid, noises)
+        for point in points:  # every value is checked before the first run starts
+            values.parameters(cls, [*args.param, *point.params])
+            adapter_options(args.adapter, args.seed, point.noise, None)
+        seeds = range(args.seed, args.seed + args.seeds)
+        with (
+            display.progress_bar(cls.NAME, len(points) * len(seeds)) as advance,
+            sweep.dask_client(args.scheduler, args.workers) as client,
+        ):
+            results = sweep.sweep(
+                client,
+                model,
+                search_path,
+                args.adapter,
+                points,
+                seeds,
+                params=args.param,
+                success=args.success,
+                done=lambda _, result: advance(result.success),
+            )
+        summaries = sweep.summarize(points, results)
+        write_tree(output, sweep.result_files(cls.NAME, summaries, results))
+    except ModelError as error:
+        print(error)
+        return EXIT_FINDINGS
+    except (RunError, GenerationError) as error:
+        raise UsageError(str(error)) from None
+    display.show_sweep(cls.NAME, wanted, sweep.point_rows(summaries), str(output))
+    return EXIT_OK
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:
