@@ -30,7 +30,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_sweep.py
 
 PICTURES := examples/screwing/skills/ScrewIn.lr examples/screwing/tasks/ScrewTask.lr \
-	examples/din_rail/tasks/AssembleRail.lr
+	examples/din_rail/tasks/AssembleRail.lr examples/din_rail_ahead/tasks/PlugTerminalAhead.lr
 
 pictures: $(STAMP)
 	$(BIN)/lightrocks generate $(PICTURES) --path examples --target dot --option render=png -o docs/images

@@ -31,6 +31,7 @@ from lightrocks.adapters.video import VideoRecorder
 from lightrocks.runtime.contract import (
     TIMEOUT,
     AdapterError,
+    Command,
     CommandResult,
     StopCondition,
     Vector3,
@@ -342,27 +343,51 @@ class SimulatedCell:
         stop: Sequence[StopCondition],
         budget: float,
     ) -> CommandResult:
-        bound = _bind(device, command, args)
-        if not (isinstance(budget, int | float) and budget >= 0 and math.isfinite(budget)):
-            raise AdapterError(f"budget must be a finite number of seconds >= 0, got {budget!r}")
-        settled, value = getattr(self, f"_{device}_{command}")(**bound)
+        return self.execute_all([Command(device, command, args, stop, budget)])[0]
+
+    def execute_all(self, commands: Sequence[Command]) -> list[CommandResult]:
+        """Start the commands in order and tick them in one loop, each until its own stop
+        condition or budget; the arm holds as soon as its command has ended."""
+        devices = [c.device for c in commands]
+        if len(set(devices)) < len(devices):
+            raise AdapterError(f"two commands at once for one device: {', '.join(devices)}")
+        for c in commands:
+            budget = c.budget
+            if not (isinstance(budget, int | float) and budget >= 0 and math.isfinite(budget)):
+                message = f"budget must be a finite number of seconds >= 0, got {budget!r}"
+                raise AdapterError(message)
+        bound = [_bind(c.device, c.command, c.args) for c in commands]
+        started = [
+            getattr(self, f"_{c.device}_{c.command}")(**b)
+            for c, b in zip(commands, bound, strict=True)
+        ]
+        ends = [self.time + c.budget - DT / 2 for c in commands]
+        results: list[CommandResult | None] = [None] * len(commands)
         live = self._live
-        end = self.time + budget - DT / 2
+        running = commands[0]
         try:
-            while True:
+            while None in results:
                 self._tick()
-                if settled():
-                    for condition in stop:
-                        if condition.holds(live):
-                            return CommandResult(condition.name, value)
-                if self.time >= end:
-                    return CommandResult(TIMEOUT)
+                for index, (c, (settled, value)) in enumerate(zip(commands, started, strict=True)):
+                    if results[index] is not None:
+                        continue
+                    running = c
+                    if settled():
+                        fired = next((s for s in c.stop if s.holds(live)), None)
+                        if fired is not None:
+                            results[index] = CommandResult(fired.name, value)
+                    if results[index] is None and self.time >= ends[index]:
+                        results[index] = CommandResult(TIMEOUT)
+                    if results[index] is not None and c.device == "robot" and None in results:
+                        self.hold()  # the other commands go on
         except AdapterError:
             raise
         except Exception as exc:
-            raise AdapterError(f"stop condition of {device}.{command} failed: {exc!r}") from exc
+            where = f"{running.device}.{running.command}"
+            raise AdapterError(f"stop condition of {where} failed: {exc!r}") from exc
         finally:
             self.hold()
+        return results  # type: ignore[return-value]
 
     def hold(self) -> None:
         """Hold the current pose (or configuration) with the impedance of the last command."""
@@ -456,7 +481,6 @@ class SimulatedCell:
         self.peak_force = 0.0
         self._yaw = 0.0
         self._r0 = self.arm.tcp.rotation.copy()
-        self.camera_done = False
 
     def _make_wrist_sensor(self) -> WristSensor:
         """Load model of the hand subtree (mass, centre of mass in the ft frame) from MuJoCo."""

@@ -23,6 +23,7 @@ import pinocchio as pin
 from lightrocks.runtime.contract import (
     TIMEOUT,
     AdapterError,
+    Command,
     CommandResult,
     StopCondition,
     Vector3,
@@ -117,46 +118,70 @@ class DryRunAdapter:
         stop: Sequence[StopCondition],
         budget: float,
     ) -> CommandResult:
-        if command not in self._commands.get(device, ()):
-            raise AdapterError(f"unknown command {device}.{command}")
-        self.calls.append((device, command, dict(args)))
-        scripted = self._outcomes.get(f"{device}.{command}") or []
-        planned = scripted[0] if scripted else None
-        if planned == "error":
-            scripted.pop(0)
-            raise AdapterError(f"scripted fault of {device}.{command}")
-        state = self._state[device]
-        for sensor in PER_COMMAND:
-            if sensor in state:
-                state[sensor] = self._neutral[device][sensor]
-        start, value = self._time, None
+        return self.execute_all([Command(device, command, args, stop, budget)])[0]
+
+    def execute_all(self, commands: Sequence[Command]) -> list[CommandResult]:
+        """Tick the commands together, each until its own stop condition or budget."""
+        devices = [c.device for c in commands]
+        if len(set(devices)) < len(devices):
+            raise AdapterError(f"two commands at once for one device: {devices}")
+        runs = [self._run(c) for c in commands]
+        results: list[CommandResult | None] = [None] * len(runs)
+        start = self._time
+        current = commands[0]
         try:
-            while True:
+            while None in results:
                 self._time = round(self._time + self.step, 9)
-                elapsed = self._time - start
-                settled = elapsed >= self.duration - 1e-9
-                if settled:
-                    value = self._settle(device, command, args)
-                if settled and planned not in (None, TIMEOUT):
-                    scripted.pop(0)
-                    return CommandResult(planned, value)
-                if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
-                    if elapsed >= budget - 1e-9:
-                        scripted.pop(0)
-                        return CommandResult(TIMEOUT)
-                    continue
-                snapshot = self.snapshot()
-                for condition in stop:
-                    if condition.holds(snapshot):
-                        if condition.name == planned:  # it ended as scripted: used
-                            scripted.pop(0)
-                        return CommandResult(condition.name, value)
-                if elapsed >= budget - 1e-9:
-                    return CommandResult(TIMEOUT)
+                for index, run in enumerate(runs):
+                    if results[index] is None:
+                        current = commands[index]
+                        results[index] = run(self._time - start)
         except AdapterError:
             raise
         except Exception as exc:
-            raise AdapterError(f"stop condition of {device}.{command} failed: {exc!r}") from exc
+            name = f"{current.device}.{current.command}"
+            raise AdapterError(f"stop condition of {name} failed: {exc!r}") from exc
+        return results  # type: ignore[return-value]
+
+    def _run(self, c: Command) -> Callable[[float], CommandResult | None]:
+        """Start one command; the returned function ticks it and tells how it ended."""
+        if c.command not in self._commands.get(c.device, ()):
+            raise AdapterError(f"unknown command {c.device}.{c.command}")
+        self.calls.append((c.device, c.command, dict(c.args)))
+        scripted = self._outcomes.get(f"{c.device}.{c.command}") or []
+        planned = scripted[0] if scripted else None
+        if planned == "error":
+            scripted.pop(0)
+            raise AdapterError(f"scripted fault of {c.device}.{c.command}")
+        state = self._state[c.device]
+        for sensor in PER_COMMAND:
+            if sensor in state:
+                state[sensor] = self._neutral[c.device][sensor]
+        settled, value = False, None
+
+        def tick(elapsed: float) -> CommandResult | None:
+            nonlocal settled, value
+            if not settled and elapsed >= self.duration - 1e-9:
+                settled, value = True, self._settle(c.device, c.command, c.args)
+            if settled and planned not in (None, TIMEOUT):
+                scripted.pop(0)
+                return CommandResult(planned, value)
+            if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
+                if elapsed >= c.budget - 1e-9:
+                    scripted.pop(0)
+                    return CommandResult(TIMEOUT)
+                return None
+            snapshot = self.snapshot()
+            for condition in c.stop:
+                if condition.holds(snapshot):
+                    if condition.name == planned:  # it ended as scripted: used
+                        scripted.pop(0)
+                    return CommandResult(condition.name, value)
+            if elapsed >= c.budget - 1e-9:
+                return CommandResult(TIMEOUT)
+            return None
+
+        return tick
 
     def _settle(self, device: str, command: str, args: Mapping[str, Any]) -> Any:
         """The idealised end state of a command; returns the command's value."""

@@ -25,9 +25,10 @@ ROOT = Path(__file__).resolve().parents[1]
 NOISE = (0.002, math.radians(2.0))
 
 
-CASE_STUDIES = [
-    ("screwing", ROOT / "examples/screwing/tasks/ScrewTask.lr"),
-    ("din_rail", ROOT / "examples/din_rail/tasks/AssembleRail.lr"),
+CASE_STUDIES = [  # (name, scene, task)
+    ("screwing", "screwing", ROOT / "examples/screwing/tasks/ScrewTask.lr"),
+    ("din_rail", "din_rail", ROOT / "examples/din_rail/tasks/AssembleRail.lr"),
+    ("din_rail_ahead", "din_rail", ROOT / "examples/din_rail_ahead/tasks/AssembleRailAhead.lr"),
 ]
 
 
@@ -40,18 +41,18 @@ def main() -> None:
     seeds = int(sys.argv[1]) if len(sys.argv) > 1 else 20
     workers = int(sys.argv[2]) if len(sys.argv) > 2 else None
     print(f"{seeds} seeds per case study, perception noise 2 mm / 2 deg, MuJoCo")
-    for name, model in CASE_STUDIES:
+    for name, scene, model in CASE_STUDIES:
         start = time.perf_counter()
         baseline = run_once(model, [], [], "mujoco")
         baseline_wall = time.perf_counter() - start
         start = time.perf_counter()
         results = run_seeds(model, [], [], "mujoco", range(seeds), NOISE, workers=workers)
         wall = time.perf_counter() - start
-        wins = sum(succeeded(name, r) for r in results)
+        wins = sum(succeeded(scene, r) for r in results)
         believed = sum(r.success for r in results)
         low, high = wilson(wins, seeds)
         times = [r.time for r in results]
-        failures = [f"seed {r.seed}: {r.outcome}" for r in results if not succeeded(name, r)]
+        failures = [f"seed {r.seed}: {r.outcome}" for r in results if not succeeded(scene, r)]
         print(f"\n{name}: {wins}/{seeds} succeeded (95 % interval {low:.0%}-{high:.0%})")
         print(f"  task outcome says success: {believed}/{seeds}")
         print(f"  baseline (no noise): {baseline.outcome}, {baseline.time:.1f} s simulated")

@@ -264,6 +264,15 @@ class State:
         return "final" in self.modifiers
 
 
+@dataclass(frozen=True)
+class Region:
+    """``region Name { … }``: one orthogonal region of a statechart or composite state."""
+
+    name: str
+    elements: tuple[Element, ...]
+    position: Position = _position()
+
+
 Element = (
     Parameter
     | Condition
@@ -273,6 +282,7 @@ Element = (
     | Pseudostate
     | Transition
     | InternalTransition
+    | Region
 )
 
 

@@ -177,6 +177,9 @@ class Converter:
         kind = "deep history" if node.deep else "history"
         return ast.Pseudostate(kind, node.name, self.position(node))
 
+    def rule_Region(self, node: Any) -> ast.Region:
+        return ast.Region(node.name, self.many(node.elements), self.position(node))
+
     def rule_InternalTransition(self, node: Any) -> ast.InternalTransition:
         stimulus = node.stimulus
         return ast.InternalTransition(

@@ -4,12 +4,20 @@ It depends on the standard library, numpy and pinocchio only, never on the workb
 """
 
 from lightrocks.runtime.binding import BindingError, bind, problems
-from lightrocks.runtime.component import ActionComponent, Cell, Component, CompositeComponent
+from lightrocks.runtime.component import (
+    ActionComponent,
+    Cell,
+    Component,
+    CompositeComponent,
+    ParallelComponent,
+)
 from lightrocks.runtime.contract import (
     TIMEOUT,
     Adapter,
     AdapterError,
+    Command,
     CommandResult,
+    ConcurrentAdapter,
     Snapshot,
     StopCondition,
     Vector3,
@@ -33,6 +41,7 @@ from lightrocks.runtime.states import (
     Condition,
     Final,
     Invariant,
+    Parallel,
     State,
     Transition,
 )
@@ -54,10 +63,12 @@ __all__ = [
     "Bound",
     "Cell",
     "Choice",
+    "Command",
     "CommandResult",
     "Component",
     "Composite",
     "CompositeComponent",
+    "ConcurrentAdapter",
     "Condition",
     "Environment",
     "Executor",
@@ -65,6 +76,8 @@ __all__ = [
     "Final",
     "Frame",
     "Invariant",
+    "Parallel",
+    "ParallelComponent",
     "SafeRange",
     "SceneObject",
     "Snapshot",

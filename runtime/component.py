@@ -15,7 +15,7 @@ from lightrocks.runtime.binding import bind
 from lightrocks.runtime.contract import Adapter, Snapshot
 from lightrocks.runtime.environment import Environment
 from lightrocks.runtime.executor import Executor, Fault, known_events
-from lightrocks.runtime.states import Action, Composite
+from lightrocks.runtime.states import Action, Composite, Parallel
 from lightrocks.runtime.trace import Record, Trace
 
 
@@ -98,6 +98,12 @@ class Component:
         return tuple(state.name for state in self._running.active())
 
     @property
+    def active_paths(self) -> tuple[str, ...]:
+        """Paths of the active states (``Chart/Composite/Child``): with orthogonal regions
+        the configuration is a tree, which names alone do not show."""
+        return tuple(state.path for state in self._running.active())
+
+    @property
     def trace(self) -> list[Record]:
         return self._running.trace.records
 
@@ -120,6 +126,10 @@ class Component:
 
 class CompositeComponent(Component, Composite):
     """A task, skill or plain statechart."""
+
+
+class ParallelComponent(Component, Parallel):
+    """A task, skill or plain statechart whose body is made of orthogonal regions."""
 
 
 class ActionComponent(Component, Action):

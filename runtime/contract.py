@@ -80,6 +80,17 @@ class CommandResult:
     value: Any = None
 
 
+@dataclass(frozen=True)
+class Command:
+    """One device command with its stop conditions and budget, as ``execute`` takes it."""
+
+    device: str
+    command: str
+    args: Mapping[str, Any]
+    stop: Sequence[StopCondition]
+    budget: float
+
+
 TIMEOUT = "timeout"
 
 
@@ -128,4 +139,20 @@ class Adapter(Protocol):
 
     def close(self) -> None:
         """Release simulator or hardware resources."""
+        ...
+
+
+@runtime_checkable
+class ConcurrentAdapter(Adapter, Protocol):
+    """An adapter that can run commands of different devices at once (orthogonal regions).
+
+    ``execute_all`` starts the commands in the given order and ticks them in one control
+    loop; each ends at its own first stop condition (once settled) or its own budget, and
+    its device then holds. It returns when every command has ended, the results in the
+    order of the commands. Two commands for one device are refused with ``AdapterError``
+    unless the device type is ``<<concurrent>>`` for this adapter.
+    """
+
+    def execute_all(self, commands: Sequence[Command]) -> Sequence[CommandResult]:
+        """Run the commands together until each has ended."""
         ...

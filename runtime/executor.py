@@ -5,6 +5,12 @@ in a simple state waiting for an event, or with the top state finished. Entering
 state runs its device command to its outcome inside the step (the adapter blocks), so a
 LightRocks task runs to its end within ``start()``. No fault escapes a step: each becomes
 one ``error`` outcome, and a run always ends with a ``finished`` or ``interrupted`` record.
+
+Orthogonal regions react in declaration order within one step; the completions they cause
+wait in a queue and are handled one after the other. Actions entered inside regions do not
+block: their commands are collected and run together (``execute_all``) once the step has
+nothing else to do, and a command stopped for an event or a time event of another region
+starts again if its action is still active after the reaction.
 """
 
 from __future__ import annotations
@@ -16,10 +22,17 @@ from functools import partial
 from types import SimpleNamespace
 from typing import Any
 
-from lightrocks.runtime.contract import TIMEOUT, Adapter, CommandResult, Snapshot, StopCondition
+from lightrocks.runtime.contract import (
+    TIMEOUT,
+    Adapter,
+    Command,
+    CommandResult,
+    Snapshot,
+    StopCondition,
+)
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
 from lightrocks.runtime.safety import refusal
-from lightrocks.runtime.states import Action, Choice, Composite, State, Transition
+from lightrocks.runtime.states import Action, Choice, Composite, Parallel, State, Transition
 from lightrocks.runtime.trace import Trace, to_json
 
 ERROR, PREEMPTED, INTERRUPTED = "error", "preempted", "interrupted"
@@ -74,6 +87,16 @@ class Preemption:
 Done = tuple[State, str] | Preemption | None
 
 
+@dataclass
+class _Request:
+    """An action's command with the stop conditions the executor watches for it."""
+
+    action: Action
+    command: Command
+    watch: _Watch
+    preemptions: dict[str, tuple[Composite, str, Any, str]]
+
+
 class Executor:
     def __init__(self, top: State, adapter: Adapter | None, trace: Trace, env: Environment):
         self.top = top
@@ -86,6 +109,8 @@ class Executor:
         self.events: deque[str] = deque()
         self.known_events = known_events(top)
         self._timers: dict[Timer, float] = {}  # deadline of each pending time event
+        self._queue: deque[Done] = deque()  # completions of further regions, in order
+        self._commands: list[Action] = []  # actions entered in regions, not yet run
         self._busy = False
         self._clock = 0.0
         self._idle = SimpleNamespace(time=0.0)
@@ -123,7 +148,10 @@ class Executor:
         self._step(lambda: self._enter(self.top, self.snapshot()))
 
     def send(self, event: str) -> bool:
-        """Dispatch one event; while a command runs it is queued and may preempt it."""
+        """Dispatch one event; while a command runs it is queued and may preempt it. A
+        finished run takes no event."""
+        if self.finished:
+            return False
         if event not in self.known_events:
             known = ", ".join(sorted(self.known_events)) or "none"
             raise UnknownEvent(f"unknown event '{event}'; {self.top.NAME} accepts: {known}")
@@ -158,13 +186,23 @@ class Executor:
         self._clock = until
 
     def active(self) -> list[State]:
-        """The active states from the top down to the innermost one."""
+        """The active states from the top down, each region's states after its own."""
         if self.finished:
             return []
-        chain: list[State] = [self.top]
-        while isinstance(chain[-1], Composite) and chain[-1].current is not None:
-            chain.append(chain[-1].current)
-        return chain
+        found: list[State] = []
+        pending = [self.top]
+        while pending:
+            state = pending.pop()
+            found.append(state)
+            pending += reversed(_active_children(state))
+        return found
+
+    def _is_active(self, state: State) -> bool:
+        while state.parent is not None:
+            if state not in _active_children(state.parent):
+                return False
+            state = state.parent
+        return state is self.top and not self.finished
 
     # -- run to completion ----------------------------------------------------------------
 
@@ -180,6 +218,11 @@ class Executor:
                         state, outcome = done
                         complete = partial(self._complete, state, outcome)
                         done = self._guarded(complete, handling_error=outcome == ERROR)
+                if self._queue:  # a completion of another region, unless it was left since
+                    done = self._queue.popleft()
+                    source = done.action if isinstance(done, Preemption) else done[0]
+                    done = done if self._is_active(source) else None
+                    continue
                 done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
                     event = self.events.popleft()
@@ -190,6 +233,9 @@ class Executor:
                     if due is not None:
                         done = self._guarded(partial(self._fire, due))
                         continue
+                if done is None and self._commands and not self.finished:
+                    done = self._guarded(self._run_commands)
+                    continue
                 if done is None:
                     return
         except Abort:
@@ -264,10 +310,12 @@ class Executor:
             parent = state.parent
             if isinstance(state, Choice):
                 return self._choose(state, s)
-            if parent is not None:
+            if isinstance(parent, Parallel):
+                parent.running.add(state.name)
+            elif parent is not None:
                 parent.current = state
-                if state.name in parent.BINDINGS:  # an <<import>> state: arguments now
-                    state.given = parent.BINDINGS[state.name](parent, s)
+            if parent is not None and state.name in parent.BINDINGS:  # <<import>>: arguments
+                state.given = parent.BINDINGS[state.name](parent, s)
             self._write("enter", state=state.path, layer=state.LAYER)
             initialize = getattr(state, "initialize", None)
             if initialize is not None:
@@ -280,7 +328,12 @@ class Executor:
             if state.FINAL:
                 return (state.parent, state.name) if state.parent is not None else (state, "")
             if isinstance(state, Action):
+                if any(isinstance(owner, Parallel) for owner in _owners(state)):
+                    self._commands.append(state)  # runs with the commands of other regions
+                    return None
                 return self._execute(state, s)
+            if isinstance(state, Parallel):
+                return self._enter_regions(state, s, history)
             if not isinstance(state, Composite):
                 return None
             remembered = state.last if history else None
@@ -292,6 +345,20 @@ class Executor:
             if not isinstance(first, State):
                 return first
             state = first
+
+    def _enter_regions(self, state: Parallel, s: Snapshot, history: str) -> Done:
+        """Enter every region in declaration order (through deep history when it is given);
+        the first completion is returned, the others wait in the queue. An error stops the
+        entry of further regions."""
+        dones = []
+        for region in state.children.values():
+            done = self._enter(region, s, "deep" if history == "deep" else "")
+            if done is not None:
+                dones.append(done)
+                if not isinstance(done, Preemption) and done[1] == ERROR:
+                    return done
+        self._queue.extend(dones[1:])
+        return dones[0] if dones else None
 
     def _choose(self, choice: Choice, s: Snapshot) -> Done:
         """Leave a choice pseudostate at once by its first branch whose guard holds."""
@@ -340,6 +407,8 @@ class Executor:
             self._exit(state, s)
             self._write("finished", outcome=outcome)
             return None
+        if isinstance(parent, Parallel) and outcome != ERROR:
+            return self._join(parent)
         self._exit(state, s)
         for transition in parent.transitions_from(state.name):
             if _matches(transition, outcome, state) and (
@@ -354,19 +423,32 @@ class Executor:
         message = f"unhandled outcome '{outcome}' of {state.path}"
         return self._error(parent, message, state.LOCATION)
 
+    @staticmethod
+    def _join(state: Parallel) -> Done:
+        """A region rests in a final state: once every region does, ``state`` completes
+        with the final state of its first region."""
+        finals = [region.current for region in state.children.values()]
+        if all(final is not None and final.FINAL for final in finals):
+            return (state, finals[0].name)
+        return None
+
     def _exit(self, state: State, s: Snapshot) -> None:
-        """Leave ``state`` and its active descendants, innermost first."""
-        if isinstance(state, Composite) and state.current is not None:
-            self._exit(state.current, s)
+        """Leave ``state`` and its active descendants, innermost first (regions in reverse
+        declaration order)."""
+        for child in reversed(_active_children(state)):
+            self._exit(child, s)
         try:
             state.on_exit(s)
         finally:  # left even when its exit action fails: the error belongs to the parent
             self._write("exit", state=state.path)
             for timer in [t for t in self._timers if t[0] is state]:
                 del self._timers[timer]
-            if state.parent is not None:
-                state.parent.last = state
-                state.parent.current = None
+            parent = state.parent
+            if isinstance(parent, Parallel):
+                parent.running.discard(state.name)
+            elif parent is not None:
+                parent.last = state
+                parent.current = None
 
     def _error(self, state: State, message: str, location: str) -> tuple[State, str]:
         self.fault = Fault(message, location, [state.path])
@@ -375,35 +457,45 @@ class Executor:
 
     # -- events ---------------------------------------------------------------------------
 
-    def _find(self, event: str, s: Snapshot) -> tuple[State, Transition] | None:
-        """The innermost active state with an enabled transition for ``event``; a state's
-        internal transitions come before those that leave it."""
-        for state in reversed(self.active()):
-            for transition in state.INTERNAL:
-                if transition.stimulus == event and (
-                    transition.guard is None or transition.guard(state, s)
-                ):
-                    return state, transition
-            parent = state.parent
-            if parent is None:
-                continue
-            if event in _completions(state):
-                continue
-            for transition in parent.transitions_from(state.name):
-                if transition.stimulus == event and (
-                    transition.guard is None or transition.guard(parent, s)
-                ):
-                    return state, transition
-        return None
+    def _find(self, event: str, s: Snapshot) -> list[tuple[State, Transition]]:
+        """The enabled transitions for ``event``: in each active region the innermost state
+        that has one (its internal transitions before those that leave it), regions in
+        declaration order; an enclosing state only when no state inside it has one."""
+        return [] if self.finished else self._select(self.top, event, s)
+
+    def _select(self, state: State, event: str, s: Snapshot) -> list[tuple[State, Transition]]:
+        inner = [found for child in _active_children(state) for found in
+                 self._select(child, event, s)]  # fmt: skip
+        if inner:
+            return inner
+        for transition in state.INTERNAL:
+            if transition.stimulus == event and (
+                transition.guard is None or transition.guard(state, s)
+            ):
+                return [(state, transition)]
+        parent = state.parent
+        if parent is None or event in _completions(state):
+            return []
+        for transition in parent.transitions_from(state.name):
+            if transition.stimulus == event and (
+                transition.guard is None or transition.guard(parent, s)
+            ):
+                return [(state, transition)]
+        return []
 
     def _dispatch_now(self, event: str) -> Done:
         return self._dispatch(event, self.snapshot()) or None
 
     def _dispatch(self, event: str, s: Snapshot) -> Done | bool:
+        """Take every enabled transition for ``event``, one region after the other; the
+        first completion is returned, the others wait in the queue."""
         found = self._find(event, s)
-        if found is None:
+        if not found:
             return False
-        return self._react(*found, s)
+        dones = [self._react(state, t, s) for state, t in found if self._is_active(state)]
+        dones = [done for done in dones if done is not None]
+        self._queue.extend(dones[1:])
+        return dones[0] if dones else None
 
     def _react(self, state: State, transition: Transition, s: Snapshot) -> Done:
         """Take an enabled transition of an active state: an internal one stays in it."""
@@ -451,14 +543,96 @@ class Executor:
         """Run the device command until an end condition, a preemption or the budget."""
         if self.adapter is None:
             return self._error(action, "no adapter bound to run a device command", action.LOCATION)
-        arguments = {
+        arguments = self._arguments(action, s)
+        refused = self._refused(action, arguments)
+        if refused is not None:
+            return refused
+        request = self._request(action, arguments)
+        try:
+            (result,) = self._call([request])
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # any adapter fault, SystemExit too
+            return self._failed([request], exc)
+        return self._settled(request, result)
+
+    def _call(self, requests: list[_Request]) -> list[Any]:
+        """One command through ``execute``, several at once through ``execute_all``."""
+        if len(requests) == 1:
+            c = requests[0].command
+            return [self.adapter.execute(c.device, c.command, c.args, c.stop, c.budget)]
+        return list(self.adapter.execute_all([request.command for request in requests]))
+
+    def _run_commands(self) -> Done:
+        """Run the commands of the actions entered in regions together, one per device."""
+        actions = [action for action in self._commands if self._is_active(action)]
+        self._commands.clear()
+        if not actions:
+            return None
+        if self.adapter is None:
+            return self._error(
+                actions[0], "no adapter bound to run a device command", actions[0].LOCATION
+            )
+        if len(actions) > 1 and not hasattr(self.adapter, "execute_all"):
+            message = "the adapter cannot run commands of several regions at once"
+            return self._error(actions[0], message, actions[0].LOCATION)
+        s = self.snapshot()
+        given = [self._arguments(action, s) for action in actions]
+        for action, arguments in zip(actions, given, strict=True):
+            refused = self._refused(action, arguments)
+            if refused is not None:
+                return refused
+        requests = [
+            self._request(a, arguments) for a, arguments in zip(actions, given, strict=True)
+        ]
+        try:
+            results = self._call(requests)
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # any adapter fault, SystemExit too
+            return self._failed(requests, exc)
+        if len(results) != len(requests):
+            self._hold()
+            message = f"adapter broke the contract: {len(results)} results of {len(requests)}"
+            return self._error(actions[0], message, actions[0].LOCATION)
+        dones: list[Done] = []
+        for request, result in zip(requests, results, strict=True):
+            if self._interrupted(result):
+                self._write("stop", state=request.action.path, outcome=result.outcome,
+                            sensors={})  # fmt: skip
+                self._commands.append(request.action)  # again after the reaction, if active
+            else:
+                dones.append(self._settled(request, result))
+        self._queue.extend(dones[1:])
+        return dones[0] if dones else None
+
+    def _interrupted(self, result: Any) -> bool:
+        """The command was stopped for an event or a time event that is really due."""
+        if not isinstance(result, CommandResult):
+            return False
+        if result.outcome == EVENT_STOP:
+            return bool(self.events)
+        return result.outcome == TIMER_STOP and self._due(self.time) is not None
+
+    @staticmethod
+    def _arguments(action: Action, s: Snapshot) -> dict[str, Any]:
+        """The command's arguments, scene objects by name."""
+        return {
             k: object_name(v) if isinstance(v, SceneObject) else v
             for k, v in action.arguments(s).items()
         }
+
+    def _refused(self, action: Action, arguments: dict[str, Any]) -> Done:
+        """A value outside its safe range: no command is sent, the arm holds, ``error``."""
         refused = refusal(action.RANGES, arguments)
-        if refused is not None:
-            self._hold()
-            return self._error(action, refused, action.LOCATION)
+        if refused is None:
+            return None
+        self._hold()
+        return self._error(action, refused, action.LOCATION)
+
+    def _request(self, action: Action, arguments: dict[str, Any]) -> _Request:
+        """The command of ``action`` with its end conditions, the end conditions of every
+        enclosing state, queued events and the next time event as stop conditions."""
         watch = _Watch()
         stops = [
             StopCondition(c.name, watch(_bound(c.holds, action), c.location or action.LOCATION))
@@ -475,18 +649,22 @@ class Executor:
             stops.append(StopCondition(TIMER_STOP, lambda _: self.time >= deadline))
         self._write("command", state=action.path, device=action.DEVICE, command=action.COMMAND,
                     budget=action.BUDGET)  # fmt: skip
-        try:
-            result = self.adapter.execute(
-                action.DEVICE, action.COMMAND, arguments, stops, action.BUDGET
-            )
-        except KeyboardInterrupt:
-            raise
-        except BaseException as exc:  # any adapter fault, SystemExit too
-            self._hold()
-            if watch.fault is not None:  # the adapter passed a stop predicate's fault on
-                raise watch.fault from None
-            where = f"{action.DEVICE}.{action.COMMAND}"
-            return self._error(action, f"adapter fault in {where}: {exc!r}", action.LOCATION)
+        command = Command(action.DEVICE, action.COMMAND, arguments, stops, action.BUDGET)
+        return _Request(action, command, watch, preemptions)
+
+    def _failed(self, requests: list[_Request], exc: BaseException) -> Done:
+        """The adapter raised while running these commands: the first action's error."""
+        self._hold()
+        for request in requests:
+            if request.watch.fault is not None:  # the adapter passed a predicate's fault on
+                raise request.watch.fault from None
+        action = requests[0].action
+        where = ", ".join(f"{r.action.DEVICE}.{r.action.COMMAND}" for r in requests)
+        return self._error(action, f"adapter fault in {where}: {exc!r}", action.LOCATION)
+
+    def _settled(self, request: _Request, result: Any) -> Done:
+        """What the executor does with the result of one command."""
+        action, watch, preemptions = request.action, request.watch, request.preemptions
         if watch.fault is not None:
             self._hold()
             raise watch.fault
@@ -530,7 +708,7 @@ class Executor:
 
     def _find_queued(self, s: Snapshot) -> bool:
         while self.events:
-            if self._find(self.events[0], s) is not None:
+            if self._find(self.events[0], s):
                 return True
             self._write("discarded", name=self.events.popleft())
         return False
@@ -600,6 +778,22 @@ def known_events(top: State) -> frozenset[str]:
         for child in top.children.values():
             found |= known_events(child)
     return frozenset(found)
+
+
+def _active_children(state: State) -> list[State]:
+    if isinstance(state, Parallel):
+        return state.regions()
+    if isinstance(state, Composite) and state.current is not None:
+        return [state.current]
+    return []
+
+
+def _owners(state: State) -> list[State]:
+    found = []
+    while state.parent is not None:
+        state = state.parent
+        found.append(state)
+    return found
 
 
 def _completions(state: State) -> tuple[str, ...]:

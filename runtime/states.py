@@ -110,6 +110,22 @@ class Composite(State):
         return index.get(source, ())
 
 
+class Parallel(Composite):
+    """An orthogonal state: its children are regions (composites), all active together.
+
+    It completes once every region rests in a final state, with the final state of its
+    first region as the outcome; leaving it leaves every region.
+    """
+
+    def __init__(self, parent: Composite | None = None, name: str | None = None) -> None:
+        super().__init__(parent, name)
+        self.running: set[str] = set()  # names of the active regions
+
+    def regions(self) -> list[State]:
+        """The active regions in declaration order."""
+        return [region for name, region in self.children.items() if name in self.running]
+
+
 class Final(State):
     """A final state: entering it completes its parent with the final state's name."""
 

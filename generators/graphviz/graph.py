@@ -43,6 +43,7 @@ class Cluster:
     nodes: list[Node] = field(default_factory=list)
     clusters: list[Cluster] = field(default_factory=list)
     anchor: str = ""  # a node inside, for edges to and from the cluster
+    style: str = ""  # "dashed" for an orthogonal region, a compartment of its state
 
 
 @dataclass
@@ -98,6 +99,9 @@ class _Builder:
                 target, head = quote(f"{path}/{transition.target}/{transition.target_history}"), ""
             if source and target:
                 self.edges.append(Edge(source, target, _label(transition), tail, head))
+        if region.orthogonal:
+            for compartment in cluster.clusters:
+                compartment.style = "dashed"
         first = cluster.nodes or [Node(quote(f"{path}/empty"), "", "point", "invis")]
         cluster.nodes = first
         cluster.anchor = first[0].id

@@ -234,6 +234,8 @@ class Builder:
             base = "rt.Final"
         elif _extends(state):
             base = self._extended_base(state, parent) or "rt.Composite"
+        elif info.region is not None and info.region.orthogonal:
+            base = "rt.Parallel"
         elif info.region is not None and info.region.states:
             base = "rt.Composite"
         view = ClassView(name, [base], doc)
@@ -275,6 +277,8 @@ class Builder:
             base = self._class_of_component(component.base)
         else:
             base = "rt.ActionComponent" if is_action else "rt.CompositeComponent"
+            if region.orthogonal:
+                base = "rt.ParallelComponent"
         layer = f"<<{component.layer}>> " if component.layer else ""
         doc = f"{layer}statechart {component.qualified_name}."
         view = ClassView(_component_class(component), [base], doc)

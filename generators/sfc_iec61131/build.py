@@ -324,6 +324,19 @@ class Branch:
     violated: list[Branch] = field(default_factory=list)  # where a broken postcondition goes
 
 
+def _refuse_regions(component: Component) -> None:
+    """Orthogonal regions would need simultaneous divergence and convergence, and a way to
+    end every branch when one of them leaves: generation ends at the first region instead
+    of producing a network that means something else."""
+    for region in component.region.regions():
+        if region.orthogonal:
+            first = next(iter(region.states.values()))
+            raise GenerationError(
+                f"{first.state.position}: {component.qualified_name}: the SFC target does not "
+                f"map orthogonal regions yet (region '{first.name}' of '{region.name}')"
+            )
+
+
 class ComponentBuilder:
     """The FUNCTION_BLOCK of one task, skill or plain statechart.
 
@@ -338,6 +351,7 @@ class ComponentBuilder:
         self.unit = unit
         self.component = component
         self.region = component.region
+        _refuse_regions(component)
         layer = component.layer or "statechart"
         self.block = Block(
             unit.globals.claim(component.name), f"<<{layer}>> {component.qualified_name}"

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import networkx as nx
 
+from lightrocks.languages.domain.types import DeviceT
 from lightrocks.languages.lightrocks.analysis import Analysis, analysis
 from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, LAYERS, Component, Region
 from lightrocks.metamodel import ast
@@ -62,6 +63,7 @@ def unique_names(context: object) -> Iterator[Finding]:
             _region_elements(region, ast.Condition)
             + _region_elements(region, ast.State)
             + _region_elements(region, ast.Pseudostate)
+            + _region_elements(region, ast.Region)
         )
         if region.parent is None:
             blocks = _region_elements(region, ast.EventBlock)
@@ -131,18 +133,137 @@ def name_matches_file(context: object) -> Iterator[Finding]:
 def transition_ends_resolve(context: object) -> Iterator[Finding]:
     for _, region in _own_regions(analysis(context)):
         names = [*region.states, *region.conditions, *region.pseudostates]
+        elsewhere = _sibling_regions(region)
         for transition in region.transitions:
             ends = (
                 (transition.source, transition.source_position),
                 (transition.target, transition.target_position),
             )
             for name, position in ends:
-                if name not in names:
+                if name not in names and name not in elsewhere:
                     yield (
                         position,
                         f"unknown state or condition '{name}'",
                         did_you_mean(name, names),
                     )
+
+
+def _sibling_regions(region: Region) -> dict[str, str]:
+    """States of the other regions of an orthogonal state, by name, to their region."""
+    parent = region.parent
+    if parent is None or not parent.orthogonal:
+        return {}
+    return {
+        state: sibling.name
+        for sibling in parent.states.values()
+        if sibling.region is not None and sibling.region is not region
+        for state in sibling.region.states
+    }
+
+
+@coco("LR0218", Severity.ERROR, "no transition crosses orthogonal regions")
+def no_crossing(context: object) -> Iterator[Finding]:
+    for _, region in _own_regions(analysis(context)):
+        own = [*region.states, *region.conditions, *region.pseudostates]
+        elsewhere = _sibling_regions(region)
+        for transition in region.transitions:
+            ends = (
+                (transition.source, transition.source_position),
+                (transition.target, transition.target_position),
+            )
+            for name, position in ends:
+                if name not in own and name in elsewhere:
+                    yield (
+                        position,
+                        f"'{name}' is in region '{elsewhere[name]}': a transition cannot "
+                        f"cross from region '{region.name}'",
+                        "regions meet only where their state is entered and left",
+                    )
+
+
+BESIDE_REGIONS = (ast.State, ast.Pseudostate, ast.Transition)
+IN_REGIONS = (ast.State, ast.Pseudostate, ast.Transition)
+KINDS = {
+    ast.Action: "an action",
+    ast.Invariant: "an invariant",
+    ast.InternalTransition: "an internal transition",
+    ast.Condition: "a condition",
+    ast.Parameter: "a parameter",
+    ast.Region: "a region",
+}
+
+
+@coco("LR0219", Severity.ERROR, "regions hold states and transitions; nothing stands beside them")
+def region_contents(context: object) -> Iterator[Finding]:
+    for _, region in _own_regions(analysis(context)):
+        elements = [e for e in _source_elements(region) if not isinstance(e, ast.ParameterBlock)]
+        in_region = region.parent is not None and region.parent.orthogonal
+        for element in elements:
+            if in_region and not isinstance(element, IN_REGIONS):
+                kind = KINDS.get(type(element), "this element")
+                yield (
+                    element.position,
+                    f"{kind} cannot stand in region '{region.name}': a region holds states, "
+                    "pseudostates and transitions",
+                    "put it on the state that owns the regions, or into a state of the region",
+                )
+            elif region.orthogonal and (
+                isinstance(element, BESIDE_REGIONS)
+                or (isinstance(element, ast.Condition) and element.kind == "start")
+            ):
+                yield (
+                    element.position,
+                    f"'{getattr(element, 'name', None) or 'this transition'}' stands beside the "
+                    f"regions of '{region.name}'",
+                    "move it into one of the regions",
+                )
+
+
+@coco("LR0220", Severity.ERROR, "regions command different devices unless a device is concurrent")
+def regions_share_no_device(context: object) -> Iterator[Finding]:
+    a = analysis(context)
+    for _, region in _own_regions(a):
+        if not region.orthogonal:
+            continue
+        seen: dict[str, str] = {}  # device instance -> the first region commanding it
+        for name, info in region.states.items():
+            if info.region is None:
+                continue
+            for device, declared in sorted(_devices(a, info.region, set()).items()):
+                first = seen.setdefault(device, name)
+                concurrent = declared is not None and ast.stereotype(
+                    declared.stereotypes, "concurrent"
+                )
+                if first != name and not concurrent:
+                    yield (
+                        info.state.position,
+                        f"regions '{first}' and '{name}' both command '{device}'",
+                        "give each region its own device, or declare the device type "
+                        "<<concurrent>> if it takes commands of several regions at once",
+                    )
+
+
+def _devices(a: Analysis, region: Region, visited: set[str]) -> dict[str, ast.Device | None]:
+    """Device instances the actions below ``region`` command, with their device types."""
+    found: dict[str, ast.Device | None] = {}
+    for inner in region.regions():
+        for info in inner.states.values():
+            component = info.imported
+            if component is None or component.qualified_name in visited:
+                continue
+            visited.add(component.qualified_name)
+            if component.layer == "action":
+                env = a.typing.environment(component.region)
+                for action in component.region.actions:
+                    for statement in action.statements if action.kind == "do" else ():
+                        call = getattr(statement, "value", getattr(statement, "expression", None))
+                        target = getattr(getattr(call, "function", None), "target", None)
+                        device = env.get(target.name) if isinstance(target, ast.Name) else None
+                        if isinstance(device, DeviceT):
+                            found[target.name] = device.device
+            else:
+                found.update(_devices(a, component.region, visited))
+    return found
 
 
 @coco("LR0111", Severity.WARNING, "stimuli leaving a child name one of its outcomes")
@@ -259,7 +380,7 @@ def _exits(region: Region) -> list[str]:
 @coco("LR0205", Severity.ERROR, "every composite has an entry: initial state or start condition")
 def has_entry(context: object) -> Iterator[Finding]:
     for _, region in _own_regions(analysis(context)):
-        if region.states and not _entries(region):
+        if region.states and not region.orthogonal and not _entries(region):
             yield (
                 region.position,
                 f"'{region.name}' has no initial state or start condition",
@@ -270,7 +391,7 @@ def has_entry(context: object) -> Iterator[Finding]:
 @coco("LR0206", Severity.ERROR, "every composite can reach an end")
 def reaches_end(context: object) -> Iterator[Finding]:
     for component, region in _own_regions(analysis(context)):
-        if not region.states or not _entries(region):
+        if not region.states or region.orthogonal or not _entries(region):
             continue
         exits = _exits(region)
         if not exits:
@@ -337,6 +458,8 @@ def no_transition_into_start(context: object) -> Iterator[Finding]:
 @coco("LR0209", Severity.WARNING, "every outcome of a child is handled")
 def outcomes_handled(context: object) -> Iterator[Finding]:
     for _, region in _own_regions(analysis(context)):
+        if region.orthogonal:
+            continue  # its regions complete together, never one by one
         leaving: dict[str, list[ast.Transition]] = {}
         for transition in region.transitions:
             leaving.setdefault(transition.source, []).append(transition)
@@ -541,6 +664,9 @@ COCOS = (
     history_targets,
     choice_branches,
     declared_events,
+    no_crossing,
+    region_contents,
+    regions_share_no_device,
     call_signature,
     type_mismatch,
     not_boolean,

@@ -57,6 +57,7 @@ class Region:
     extensions: list[object] = field(default_factory=list)
     """Elements of language extensions (workbench.extensions), inherited ones first."""
     parent: Region | None = None
+    orthogonal: bool = False  # its states are regions, active together
 
     @property
     def start_conditions(self) -> list[ast.Condition]:
@@ -68,8 +69,14 @@ class Region:
 
     @property
     def outcomes(self) -> tuple[str, ...]:
-        finals = [s.name for s in self.states.values() if s.state.is_final]
-        return tuple(c.name for c in self.end_conditions) + tuple(finals)
+        """End conditions and final states; when all regions of an orthogonal state are
+        final it completes with the final state of its first region."""
+        ends = tuple(c.name for c in self.end_conditions)
+        if self.orthogonal:
+            first = next(iter(self.states.values()), None)
+            inner = first.region if first is not None else None
+            return ends + (inner.outcomes if inner is not None else ())
+        return ends + tuple(s.name for s in self.states.values() if s.state.is_final)
 
     def regions(self) -> list[Region]:
         """This region and every composite-state region inside it, depth first."""
@@ -219,6 +226,7 @@ class ModelSet:
             region.internal.extend(base.internal)
             region.invariants.extend(base.invariants)
             region.extensions.extend(base.extensions)
+            region.orthogonal = base.orthogonal
             if base.events is not None:
                 region.events = dict(base.events)
         own_actions: list[ast.Action] = []
@@ -229,6 +237,10 @@ class ModelSet:
                 region.conditions[element.name] = element
             elif isinstance(element, ast.State):
                 region.states[element.name] = self._state(element, loaded, region, owner)
+            elif isinstance(element, ast.Region):
+                region.orthogonal = True
+                state = ast.State(element.name, body=element.elements, position=element.position)
+                region.states[element.name] = self._state(state, loaded, region, owner)
             elif isinstance(element, ast.Transition):
                 index = inherited.pop((element.source, element.stimulus), None)
                 if index is None:

@@ -46,9 +46,11 @@ def _prefixed(items: Sequence[ast.Stereotype], text: str) -> str:
     return f"{stereotypes(items)} {text}" if items else text
 
 
-def _body(writer: Writer, head: Sequence[str], node: ast.Statechart | ast.State) -> None:
-    """The elements of a statechart or hierarchical state in braces after ``head``."""
-    elements = node.elements if isinstance(node, ast.Statechart) else node.body or ()
+def _body(
+    writer: Writer, head: Sequence[str], node: ast.Statechart | ast.State | ast.Region
+) -> None:
+    """The elements of a statechart, hierarchical state or region in braces after ``head``."""
+    elements = node.body or () if isinstance(node, ast.State) else node.elements
     if not elements and not writer.comments_within(node.position):
         writer.line([*head[:-1], head[-1] + " { }"], node.position.line)
         return
@@ -76,6 +78,9 @@ def _element(writer: Writer, node: ast.Element | ast.ParameterBlock | ast.EventB
             writer.line([f"{kind} condition {name}{_bracketed(condition)};"], where.line)
         case ast.State():
             _state(writer, node)
+        case ast.Region(name=name):
+            writer.item(where, "region", spaced=True)
+            _body(writer, [f"region {name}"], node)
         case ast.Action(kind=kind, statements=statements, block=True):
             writer.item(where, "action")
             block(writer, f"{kind} /", statements, where)

@@ -221,6 +221,18 @@ def test_plain_chart_without_final_state_resting_after_its_events_succeeds(
     assert "active: Door / Open" in out
 
 
+def test_the_active_states_of_every_region_are_shown(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "Pair.lr").write_text(
+        "statechart Pair {\n  region Left {\n    initial state A;\n    state B;\n"
+        "    A -> B go;\n  }\n  region Right {\n    initial state C;\n  }\n}\n"
+    )
+    status, out, _ = run(capsys, str(tmp_path / "Pair.lr"), "--events", "go")
+    assert status == 0
+    assert "active: Pair / Left / B | Pair / Right / C" in out
+
+
 DELAYED = (
     "statechart Lamp {\n  initial state Off;\n  state On;\n"
     "  Off -> On on;\n  On -> Off after(1 s);\n}\n"

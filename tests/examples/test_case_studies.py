@@ -21,6 +21,7 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 SCREW_TASK = EXAMPLES / "screwing" / "tasks" / "ScrewTask.lr"
 ASSEMBLE_RAIL = EXAMPLES / "din_rail" / "tasks" / "AssembleRail.lr"
+ASSEMBLE_AHEAD = EXAMPLES / "din_rail_ahead" / "tasks" / "AssembleRailAhead.lr"
 NOISE = (0.002, math.radians(2.0))
 
 pytestmark = pytest.mark.slow
@@ -104,8 +105,19 @@ def test_reordering_the_rail_tasks_changes_only_the_sequence_model(tmp_path: Pat
     assert tasks_in_order(result) == [f"AssembleRail/PlugTerminal{i}" for i in (3, 1, 2)]
 
 
+def test_the_camera_looks_ahead_while_the_arm_presses_on() -> None:
+    result = run_once(ASSEMBLE_AHEAD, [], [], "mujoco")
+    assert all_latched(result), result
+    skills = [path for path, _ in result.skills]
+    assert "AssembleRailAhead/PlugTerminal1/FindTerminal" in skills
+    for later in ("PlugTerminal2", "PlugTerminal3"):  # localized while the previous one snapped
+        assert f"AssembleRailAhead/{later}/FindTerminal" not in skills
+    assert "AssembleRailAhead/PlugTerminal1/PressOn/Camera/LookAhead" in skills
+
+
 @pytest.mark.parametrize(
-    ("model", "succeeded"), [(SCREW_TASK, screwed_home), (ASSEMBLE_RAIL, all_latched)]
+    ("model", "succeeded"),
+    [(SCREW_TASK, screwed_home), (ASSEMBLE_RAIL, all_latched), (ASSEMBLE_AHEAD, all_latched)],
 )
 def test_case_studies_succeed_under_perception_noise(model: Path, succeeded) -> None:
     """2 mm / 2 deg camera noise on a few seeds; benchmarks/bench_case_studies.py runs 20."""

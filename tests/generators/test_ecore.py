@@ -46,3 +46,69 @@ def test_round_trip(tmp_path) -> None:
 
 def test_generating_twice_is_byte_identical() -> None:
     assert generate("ecore", [SCREW_IN]) == generate("ecore", [SCREW_IN])
+
+
+CONSTRUCTS = """package d;
+
+statechart Gate {
+  events {
+    go;
+    back;
+  }
+
+  initial state Idle;
+  state Both {
+    internal [true] go;
+
+    region Left {
+      initial state A;
+      state B;
+      deep history D;
+      A -> B after(2 s);
+    }
+
+    region Right {
+      initial state C;
+      choice Pick;
+      C -> Pick go;
+      Pick -> C;
+    }
+  }
+
+  state Pause {
+    initial state P;
+    history H;
+  }
+
+  Idle -> Both go;
+  Both -> Pause back;
+  Pause -> Both go;
+  Idle -> Pause.H back;
+}
+"""
+
+
+def test_regions_pseudostates_internal_and_time_events_are_exported(tmp_path) -> None:
+    (tmp_path / "d").mkdir()
+    model = tmp_path / "d" / "Gate.lr"
+    model.write_text(CONSTRUCTS)
+    files = generate("ecore", [model], search=[tmp_path])
+    package, unit = _reload(tmp_path, files, "d.Gate.xmi")
+    assert package.getEClassifier("Region").findEStructuralFeature("elements").containment
+    elements = list(unit.statechart.elements)
+    assert [e.name for e in elements[0].events] == ["go", "back"]
+    both = next(e for e in elements if e.eClass.name == "State" and e.name == "Both")
+    internal, left, right = both.body
+    assert (internal.eClass.name, internal.stimulus) == ("InternalTransition", "go")
+    assert [(r.eClass.name, r.name) for r in (left, right)] == [
+        ("Region", "Left"),
+        ("Region", "Right"),
+    ]
+    history = next(e for e in left.elements if e.eClass.name == "Pseudostate")
+    assert (history.kind, history.name) == ("deep history", "D")
+    after = next(e for e in left.elements if e.eClass.name == "Transition")
+    assert after.stimulus == "after" and after.stimulus_arguments[0].value == 2.0
+    choice = next(e for e in right.elements if e.eClass.name == "Pseudostate")
+    assert (choice.kind, choice.name) == ("choice", "Pick")
+    into_history = [e for e in elements if e.eClass.name == "Transition"][-1]
+    assert (into_history.target, into_history.target_history) == ("Pause", "H")

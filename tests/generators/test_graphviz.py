@@ -108,3 +108,13 @@ def test_bad_options(options: dict[str, str]) -> None:
 
 def test_identifiers_and_labels_are_quoted_and_escaped() -> None:
     assert quote('a "b"\\c\nd') == '"a \\"b\\"\\\\c\\nd"'
+
+
+def test_regions_are_dashed_compartments_of_their_state(pictures: dict[str, str]) -> None:
+    text = pictures["din_rail_ahead.tasks.PlugTerminalAhead.dot"]
+    for region in ("Arm", "Camera"):
+        cluster = quote(f"cluster_PlugTerminalAhead/PressOn/{region}")
+        body = text.split(f"subgraph {cluster} {{", 1)[1]
+        assert body.lstrip().startswith(f'label="{region}";\n') and "style=dashed;" in body
+    owner = text.split(f"subgraph {quote('cluster_PlugTerminalAhead/PressOn')} {{", 1)[1]
+    assert owner.index("style=dashed") > owner.index("cluster_PlugTerminalAhead/PressOn/Arm")

@@ -7,6 +7,8 @@ and its eventless transitions fire as soon as the final state is active, which i
 moment a LightRocks composite completes. End conditions become final states, a choice a
 state left by eventless transitions whose guards exclude the earlier branches, ``after(d)``
 sismic's ``after(seconds)`` guard, and an internal transition a transition without target.
+Regions become sismic's parallel states, one compound state per region; the join of a
+LightRocks orthogonal state is an eventless transition guarded by every region being final.
 """
 
 from __future__ import annotations
@@ -41,6 +43,10 @@ def _state(path: str, name: str, body: tuple[Any, ...] | None, final: bool = Fal
     internal = [_internal(e) for e in body or () if isinstance(e, ast.InternalTransition)]
     if internal:
         state["transitions"] = internal
+    regions = [e for e in body or () if isinstance(e, ast.Region)]
+    if regions:
+        state["parallel states"] = [_state(f"{path}/{r.name}", r.name, r.elements) for r in regions]
+        return state
     children = [e for e in body or () if isinstance(e, ast.State)]
     pseudostates = [e for e in body or () if isinstance(e, ast.Pseudostate)]
     ends = [e.name for e in body or () if isinstance(e, ast.Condition) and e.kind == "end"]
@@ -82,7 +88,27 @@ def _internal(transition: ast.InternalTransition) -> dict:
 def _outcomes(source: ast.State | None) -> list[str]:
     body = source.body or () if source is not None else ()
     ends = [e.name for e in body if isinstance(e, ast.Condition) and e.kind == "end"]
-    return ends + [e.name for e in body if isinstance(e, ast.State) and e.is_final]
+    regions = [e for e in body if isinstance(e, ast.Region)]
+    if regions:
+        return ends + _finals(regions[0].elements)
+    return ends + _finals(body)
+
+
+def _finals(body: tuple[Any, ...]) -> list[str]:
+    return [e.name for e in body if isinstance(e, ast.State) and e.is_final]
+
+
+def _reached(here: str, source: ast.State, outcomes: list[str]) -> str:
+    """The guard that ``source`` has completed with one of ``outcomes``: in a final state,
+    or with every region final and the first one in one of ``outcomes``."""
+    regions = [e for e in source.body or () if isinstance(e, ast.Region)]
+    if not regions:
+        return "(" + " or ".join(f"active('{here}/{o}')" for o in outcomes) + ")"
+    first, *others = regions
+    joined = [[f"{first.name}/{o}" for o in outcomes if o in _finals(first.elements)]]
+    joined += [[f"{r.name}/{f}" for f in _finals(r.elements)] for r in others]
+    parts = ["(" + " or ".join(f"active('{here}/{f}')" for f in finals) + ")" for finals in joined]
+    return "(" + " and ".join(parts) + ")"
 
 
 def _transition(
@@ -100,10 +126,9 @@ def _transition(
     elif transition.stimulus == "after":
         guards.insert(0, f"after({python(transition.stimulus_arguments[0])})")
     elif outcomes and not transition.stimulus:
-        reached = " or ".join(f"active('{here}/{o}')" for o in outcomes)
-        guards.insert(0, f"({reached})")
+        guards.insert(0, _reached(here, source, outcomes))
     elif transition.stimulus in outcomes:
-        guards.insert(0, f"active('{here}/{transition.stimulus}')")
+        guards.insert(0, _reached(here, source, [transition.stimulus]))
     else:
         result["event"] = transition.stimulus
     if guards:

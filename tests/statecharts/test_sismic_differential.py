@@ -202,6 +202,122 @@ statechart Player {
   Playing -> Stopped stop;
 }
 """,
+    "Cell": """package d;
+
+statechart Cell {
+  parameters {
+    Integer parts = 0;
+  }
+
+  initial state Idle;
+  state Work {
+    region Arm {
+      initial state Reach;
+      state Grip;
+      final state Placed;
+      Reach -> Grip near;
+      Grip -> Placed close / { parts = parts + 1; };
+      Grip -> Reach slip;
+    }
+
+    region Camera {
+      initial state Search;
+      state Track;
+      final state Seen;
+      Search -> Track found;
+      Track -> Seen near;
+      Track -> Search lost;
+    }
+  }
+  state Fault;
+
+  Idle -> Work [parts < 2] go;
+  Work -> Idle;
+  Work -> Fault slip;
+  Fault -> Idle reset;
+}
+""",
+    "Crossing": """package d;
+
+statechart Crossing {
+  parameters {
+    Integer calls = 0;
+  }
+
+  region Traffic {
+    initial state Red;
+    state Green;
+    state Yellow;
+    Red -> Green after(1 s);
+    Green -> Yellow after(750 ms);
+    Yellow -> Red after(250 ms);
+    Green -> Yellow press;
+  }
+
+  region Walker {
+    initial state Wait {
+      internal [calls < 3] press / { calls = calls + 1; };
+    }
+    state Cross {
+      initial state Steady;
+      state Blink {
+        region Lamp {
+          initial state Lit;
+          state Dark;
+          Lit -> Dark after(250 ms);
+          Dark -> Lit after(250 ms);
+        }
+
+        region Beep {
+          initial state Quiet;
+          state Loud;
+          Quiet -> Loud press;
+          Loud -> Quiet after(500 ms);
+        }
+      }
+      Steady -> Blink after(500 ms);
+    }
+    Wait -> Cross go;
+    Cross -> Wait stop;
+  }
+}
+""",
+    "Press": """package d;
+
+statechart Press {
+  initial state Off;
+  state On {
+    exit / { }
+
+    region Motor {
+      initial state Slow;
+      state Fast {
+        initial state Ramp;
+        final state Top;
+        Ramp -> Top up;
+      }
+      final state Halted;
+      Slow -> Fast up;
+      Fast -> Slow down;
+      Fast -> Halted;
+    }
+
+    region Guard {
+      initial state Closed;
+      final state Locked;
+      state Open;
+      Closed -> Open open;
+      Open -> Closed close;
+      Closed -> Locked lock;
+    }
+  }
+  final state Done;
+
+  Off -> On power;
+  On -> Off power;
+  On -> Done;
+}
+""",
     "Unhandled": """package d;
 
 statechart Unhandled {
@@ -227,18 +343,14 @@ TICK = "+0.25"  # advances both clocks by 0.25 s: every delay is a multiple of i
 
 def ours(cls: type, events: list[str]) -> tuple[list[tuple[str, ...]], object]:
     chart = cls().start()
-    seen = [_paths(chart.active_configuration)]
+    seen = [tuple(sorted(chart.active_paths))]
     for event in events:
         if event == TICK:
             chart.advance(0.25)
         else:
             chart.send(event)
-        seen.append(_paths(chart.active_configuration))
+        seen.append(tuple(sorted(chart.active_paths)))
     return seen, chart
-
-
-def _paths(names: tuple[str, ...]) -> tuple[str, ...]:
-    return tuple(sorted("/".join(names[: i + 1]) for i in range(len(names))))
 
 
 def theirs(text: str, events: list[str]) -> list[tuple[str, ...]]:

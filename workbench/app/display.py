@@ -79,7 +79,7 @@ def show(name: str, run: Callable[..., RunResult]) -> int:
         console.print(table)
     print(f"outcome: {outcome} after {result.time:.3f} s")
     if result.active:
-        print("active: " + " / ".join(result.active))
+        print("active: " + " | ".join(path.replace("/", " / ") for path in result.active))
     if result.fault:
         print(f"error: {printable(result.fault)}")
     if result.video:

@@ -131,7 +131,8 @@ class RunResult:
     measurements: dict[str, float | bool]
     fault: str
     active: tuple[str, ...]
-    """The active configuration when the run did not finish."""
+    """The paths of the innermost active states when the run did not finish (one per
+    active orthogonal region)."""
     video: str = ""
     """Where the adapter's video went."""
 
@@ -179,9 +180,13 @@ def run_component(
         summary.skills,
         measured,
         summary.fault,
-        () if chart.finished else chart.active_configuration,
+        () if chart.finished else _innermost(chart.active_paths),
         video_written,
     )
+
+
+def _innermost(paths: tuple[str, ...]) -> tuple[str, ...]:
+    return tuple(p for p in paths if not any(q.startswith(p + "/") for q in paths))
 
 
 def run_once(

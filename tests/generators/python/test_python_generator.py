@@ -104,6 +104,9 @@ def test_turnstile_from_python(package):
 def test_turnstile_from_the_cli(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "user-cache"))
+    for loaded in [m for m in sys.modules if m.startswith("lightrocks_")]:
+        # a package another test of this process imported would be reused, cache untouched
+        monkeypatch.delitem(sys.modules, loaded)
     trace = tmp_path / "t.jsonl"
     model = str(EXAMPLES / "plain" / "Turnstile.lr")
     assert main(["run", model, "--events", "coin,push,shutdown", "--trace", str(trace)]) == 0
