@@ -42,9 +42,9 @@ class DryRunAdapter:
     ``outcomes`` scripts outcomes per command, ``{"gripper.close": ["empty", "holding"]}``:
     the next one ends the next call of that command once it has run (``"error"`` raises an
     adapter fault, ``"timeout"`` spends the budget); a call that another stop condition ends
-    first (a preemption, an event) leaves it for the following call;
-    ``sensors`` overrides sensor values, ``{"robot.wrench": Wrench(...)}`` or a function of
-    the time. ``calls`` and ``holds`` record what the runtime asked for.
+    first (a preemption, an event) leaves it for the following call; ``None`` lets one call
+    end as it comes. ``sensors`` overrides sensor values, ``{"robot.wrench": Wrench(...)}``
+    or a function of the time. ``calls`` and ``holds`` record what the runtime asked for.
     """
 
     def __init__(
@@ -53,7 +53,7 @@ class DryRunAdapter:
         *,
         duration: float = 0.1,
         step: float = 0.01,
-        outcomes: Mapping[str, Sequence[str]] | None = None,
+        outcomes: Mapping[str, Sequence[str | None]] | None = None,
         sensors: SensorScript | None = None,
     ) -> None:
         self.scene = scene
@@ -150,6 +150,8 @@ class DryRunAdapter:
         self.calls.append((c.device, c.command, dict(c.args)))
         scripted = self._outcomes.get(f"{c.device}.{c.command}") or []
         planned = scripted[0] if scripted else None
+        if scripted and planned is None:  # "this call as it comes": used by the call itself
+            scripted.pop(0)
         if planned == "error":
             scripted.pop(0)
             raise AdapterError(f"scripted fault of {c.device}.{c.command}")

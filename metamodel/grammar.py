@@ -12,6 +12,7 @@ names which of them fill which hook; a hook nobody fills matches nothing.
 from __future__ import annotations
 
 import gc
+import threading
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -75,8 +76,17 @@ def build_metamodel(
     return metamodel_from_str(text, autokwd=True, skipws=True)
 
 
-textx_metamodel = cache(build_metamodel)
-"""The textX metamodel the parsers use, built once per process."""
+_building = threading.Lock()
+
+
+@cache
+def textx_metamodel(
+    root: Path, fragments: tuple[str, ...], extensions: tuple[GrammarExtension, ...] = ()
+):
+    """The textX metamodel the parsers use, built once per process. textX reads grammars
+    with one shared parser, so builds from several threads take turns."""
+    with _building:
+        return build_metamodel(root, fragments, extensions)
 
 
 def parse(
