@@ -289,6 +289,17 @@ def cmd_list(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _configure_lsp(sub: argparse._SubParsersAction) -> None:
+    sub.add_parser("lsp", help="serve the language server protocol over stdio (for editors)")
+
+
+@command(_configure_lsp)
+def cmd_lsp(args: argparse.Namespace) -> int:
+    from lightrocks.workbench.app.lsp.server import main as serve  # only editors need pygls
+
+    return serve()
+
+
 def parser() -> argparse.ArgumentParser:
     main_parser = argparse.ArgumentParser(
         prog="lightrocks", description="LightRocks language workbench"
