@@ -196,6 +196,53 @@ class Transition:
     source_position: Position = _position()
     target_position: Position = _position()
     stimulus_position: Position = _position()
+    target_history: str = ""  # ``Target.H``: enter Target through its history pseudostate H
+
+    delay = property(lambda self: _delay(self))
+
+
+@dataclass(frozen=True)
+class InternalTransition:
+    """``internal [guard] stimulus / { action };``: reacts without leaving its state."""
+
+    stimulus: str
+    guard: Expression | None = None
+    stimulus_arguments: tuple[Expression, ...] = ()
+    action: tuple[Statement, ...] | None = None
+    position: Position = _position()
+    stimulus_position: Position = _position()
+
+    delay = property(lambda self: _delay(self))
+
+
+def _delay(transition: Transition | InternalTransition) -> Expression | None:
+    """The duration of a time event ``after(d)``, or None for any other stimulus."""
+    if transition.stimulus == "after" and len(transition.stimulus_arguments) == 1:
+        return transition.stimulus_arguments[0]
+    return None
+
+
+@dataclass(frozen=True)
+class Pseudostate:
+    """``choice C;``, ``history H;`` or ``deep history H;`` in a region."""
+
+    kind: str  # "choice" | "history" | "deep history"
+    name: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class Event:
+    name: str
+    position: Position = _position()
+
+
+@dataclass(frozen=True)
+class EventBlock:
+    """``events { … }``: the external events a statechart accepts."""
+
+    events: tuple[Event, ...]
+    position: Position = _position()
 
 
 @dataclass(frozen=True)
@@ -217,7 +264,16 @@ class State:
         return "final" in self.modifiers
 
 
-Element = Parameter | Condition | Action | Invariant | State | Transition
+Element = (
+    Parameter
+    | Condition
+    | Action
+    | Invariant
+    | State
+    | Pseudostate
+    | Transition
+    | InternalTransition
+)
 
 
 @dataclass(frozen=True)
@@ -231,7 +287,7 @@ class ParameterBlock:
 @dataclass(frozen=True)
 class Statechart:
     name: str
-    elements: tuple[Element | ParameterBlock, ...]
+    elements: tuple[Element | ParameterBlock | EventBlock, ...]
     stereotypes: tuple[Stereotype, ...] = ()
     position: Position = _position()
 

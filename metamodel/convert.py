@@ -153,6 +153,28 @@ class Converter:
     def rule_Invariant(self, node: Any) -> ast.Invariant:
         return ast.Invariant(self.convert(node.expression), self.position(node))
 
+    def rule_EventBlock(self, node: Any) -> ast.EventBlock:
+        events = tuple(ast.Event(e.name, self.position(e)) for e in node.events)
+        return ast.EventBlock(events, self.position(node))
+
+    def rule_ChoiceState(self, node: Any) -> ast.Pseudostate:
+        return ast.Pseudostate("choice", node.name, self.position(node))
+
+    def rule_HistoryState(self, node: Any) -> ast.Pseudostate:
+        kind = "deep history" if node.deep else "history"
+        return ast.Pseudostate(kind, node.name, self.position(node))
+
+    def rule_InternalTransition(self, node: Any) -> ast.InternalTransition:
+        stimulus = node.stimulus
+        return ast.InternalTransition(
+            stimulus.name,
+            self.optional(node.guard),
+            self.many(stimulus.arguments),
+            self.convert(node.action) if node.action else None,
+            self.position(node),
+            self.position(stimulus),
+        )
+
     def rule_Transition(self, node: Any) -> ast.Transition:
         stimulus = node.stimulus
         return ast.Transition(
@@ -167,6 +189,7 @@ class Converter:
             self.position(node.source),
             self.position(node.target),
             self.position(stimulus) if stimulus else ast.NOWHERE,
+            node.target.history or "",
         )
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import io
+import re
 import types
 import typing
 from functools import cache
@@ -87,6 +88,15 @@ def _feature(name, hint, classes, unions, root) -> ecore.EStructuralFeature:
     return ecore.EReference(name, target, containment=True, lower=lower, upper=upper)
 
 
+_NOT_IN_XML = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
+def xml_text(value: str) -> str:
+    """``value`` with the characters XML 1.0 cannot carry (controls such as ESC or NUL)
+    written as ``\\uXXXX``, so that any model string can be exported."""
+    return _NOT_IN_XML.sub(lambda m: f"\\u{ord(m.group()):04x}", value)
+
+
 def to_eobject(node: object) -> ecore.EObject:
     """An instance of the metamodel holding the same values as the AST ``node``."""
     eclass = metamodel().getEClassifier(type(node).__name__)
@@ -95,6 +105,10 @@ def to_eobject(node: object) -> ecore.EObject:
         value = getattr(node, feature.name)
         if value is None:
             continue
+        if isinstance(value, str):
+            value = xml_text(value)
+        elif feature.many:
+            value = [xml_text(v) if isinstance(v, str) else v for v in value]
         if feature.many:
             values = [to_eobject(v) if dataclasses.is_dataclass(v) else v for v in value]
             getattr(instance, feature.name).extend(values)

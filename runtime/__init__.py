@@ -16,10 +16,11 @@ from lightrocks.runtime.contract import (
     Wrench,
 )
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
-from lightrocks.runtime.executor import ERROR, PREEMPTED, Executor, Fault
+from lightrocks.runtime.executor import ERROR, PREEMPTED, Executor, Fault, UnknownEvent
 from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
 from lightrocks.runtime.states import (
     Action,
+    Choice,
     Composite,
     Condition,
     Final,
@@ -42,6 +43,7 @@ __all__ = [
     "AdapterError",
     "BindingError",
     "Cell",
+    "Choice",
     "CommandResult",
     "Component",
     "Composite",
@@ -59,6 +61,7 @@ __all__ = [
     "StopCondition",
     "Trace",
     "Transition",
+    "UnknownEvent",
     "Vector3",
     "Wrench",
     "bind",

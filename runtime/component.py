@@ -14,7 +14,7 @@ from typing import IO, Any, ClassVar, Self
 from lightrocks.runtime.binding import bind
 from lightrocks.runtime.contract import Adapter, Snapshot
 from lightrocks.runtime.environment import Environment
-from lightrocks.runtime.executor import Executor, Fault
+from lightrocks.runtime.executor import Executor, Fault, known_events
 from lightrocks.runtime.states import Action, Composite
 from lightrocks.runtime.trace import Record, Trace
 
@@ -33,6 +33,7 @@ class Component:
     NAME: ClassVar[str]
     CELL: ClassVar[type[Cell] | None] = None
     PARAMETERS: ClassVar[Mapping[str, str]] = {}  # model name -> Python attribute
+    EVENTS: ClassVar[tuple[str, ...] | None] = None  # declared events, if the model has any
 
     def __init__(self, parent: Composite | None = None, name: str | None = None, **params: Any):
         super().__init__(parent, name)  # type: ignore[call-arg]
@@ -72,8 +73,18 @@ class Component:
         return self
 
     def send(self, event: str) -> bool:
-        """Dispatch one event; True when a transition took it."""
+        """Dispatch one event; True when a transition took it. An event the statechart does
+        not know raises :class:`runtime.executor.UnknownEvent`."""
         return self._running.send(event)
+
+    def advance(self, seconds: float) -> None:
+        """Move the virtual clock of a run without adapter; due ``after(…)`` events fire."""
+        self._running.advance(seconds)
+
+    @property
+    def events(self) -> frozenset[str]:
+        """The events this statechart accepts."""
+        return known_events(self)  # type: ignore[arg-type]
 
     @property
     def _running(self) -> Executor:

@@ -3,12 +3,14 @@
 A step starts with ``start()`` or ``send(event)`` and ends when every active state rests:
 in a simple state waiting for an event, or with the top state finished. Entering an action
 state runs its device command to its outcome inside the step (the adapter blocks), so a
-LightRocks task runs to its end within ``start()``.
+LightRocks task runs to its end within ``start()``. No fault escapes a step: each becomes
+one ``error`` outcome, and a run always ends with a ``finished`` or ``interrupted`` record.
 """
 
 from __future__ import annotations
 
 from collections import deque
+from contextlib import suppress
 from dataclasses import dataclass, field
 from functools import partial
 from types import SimpleNamespace
@@ -16,11 +18,30 @@ from typing import Any
 
 from lightrocks.runtime.contract import TIMEOUT, Adapter, CommandResult, Snapshot, StopCondition
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
-from lightrocks.runtime.states import Action, Composite, State, Transition
+from lightrocks.runtime.states import Action, Choice, Composite, State, Transition
 from lightrocks.runtime.trace import Trace, to_json
 
-ERROR, PREEMPTED = "error", "preempted"
-EVENT_STOP = "@event"
+ERROR, PREEMPTED, INTERRUPTED = "error", "preempted", "interrupted"
+EVENT_STOP, TIMER_STOP = "@event", "@timer"
+
+Timer = tuple[State, Transition]  # a time event of an active state, pending
+
+
+class UnknownEvent(ValueError):
+    """An event that no transition of the statechart names and no declaration lists."""
+
+
+class _Fault(Exception):
+    """A fault already described (message and model location) on its way to ``_guarded``."""
+
+    def __init__(self, message: str, location: str) -> None:
+        super().__init__(message)
+        self.message, self.location = message, location
+
+
+def describe(exc: BaseException) -> str:
+    """What a Python error in model code, an adapter or a sensor read says about itself."""
+    return f"{type(exc).__name__} in model code: {exc}"
 
 
 @dataclass
@@ -40,6 +61,7 @@ class Preemption:
     owner: Composite | None = None
     outcome: str = ""
     event: str = ""
+    timer: Timer | None = None
 
 
 Done = tuple[State, str] | Preemption | None
@@ -55,20 +77,38 @@ class Executor:
         self.finished = False
         self.outcome: str | None = None
         self.events: deque[str] = deque()
+        self.known_events = known_events(top)
+        self._timers: dict[Timer, float] = {}  # deadline of each pending time event
         self._busy = False
+        self._clock = 0.0
         self._idle = SimpleNamespace(time=0.0)
 
     # -- clock and sensors ----------------------------------------------------------------
 
     @property
     def time(self) -> float:
-        return self.adapter.time if self.adapter is not None else 0.0
+        if self.adapter is None:
+            return self._clock  # the virtual clock, moved by advance()
+        return self._ask("time", lambda: self.adapter.time)
 
     def snapshot(self) -> Snapshot:
-        return self.adapter.snapshot() if self.adapter is not None else self._idle
+        if self.adapter is None:
+            return self._idle
+        return self._ask("snapshot()", self.adapter.snapshot)
+
+    @staticmethod
+    def _ask(what: str, read: Any) -> Any:
+        """Read the adapter; a failure is an adapter fault, not one of the model's code."""
+        try:
+            return read()
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:
+            raise _Fault(f"adapter fault in {what}: {exc!r}", "") from None
 
     def _write(self, kind: str, **fields: Any) -> None:
-        self.trace.write(self.time, kind, **fields)
+        self._clock = self.time
+        self.trace.write(self._clock, kind, **fields)
 
     # -- public steps ---------------------------------------------------------------------
 
@@ -77,6 +117,9 @@ class Executor:
 
     def send(self, event: str) -> bool:
         """Dispatch one event; while a command runs it is queued and may preempt it."""
+        if event not in self.known_events:
+            known = ", ".join(sorted(self.known_events)) or "none"
+            raise UnknownEvent(f"unknown event '{event}'; {self.top.NAME} accepts: {known}")
         if self._busy:
             self.events.append(event)
             return True
@@ -93,6 +136,19 @@ class Executor:
 
         self._step(dispatch)
         return handled[0] if handled else True  # no answer: the event ended in an error
+
+    def advance(self, seconds: float) -> None:
+        """Move the virtual clock of a run without adapter; due time events fire on the way,
+        each at its own deadline."""
+        if self.adapter is not None:
+            raise RuntimeError("the adapter's clock drives this run; it cannot be advanced")
+        if seconds < 0:
+            raise ValueError(f"time cannot go back: advance({seconds})")
+        until = self._clock + seconds
+        while not self.finished and (due := self._due(until)) is not None:
+            self._clock = max(self._clock, self._timers[due])
+            self._step(partial(self._fire, due))
+        self._clock = until
 
     def active(self) -> list[State]:
         """The active states from the top down to the innermost one."""
@@ -114,30 +170,82 @@ class Executor:
                     if isinstance(done, Preemption):
                         done = self._guarded(partial(self._preempt, done))
                     else:
-                        done = self._guarded(partial(self._complete, *done))
+                        state, outcome = done
+                        complete = partial(self._complete, state, outcome)
+                        done = self._guarded(complete, handling_error=outcome == ERROR)
                 done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
                     event = self.events.popleft()
                     self._write("event", name=event)
                     done = self._guarded(partial(self._dispatch_now, event))
+                if done is None and not self.finished:
+                    due = self._due(self.time)
+                    if due is not None:
+                        done = self._guarded(partial(self._fire, due))
+                        continue
                 if done is None:
                     return
+        except KeyboardInterrupt:
+            self._interrupt()
+            raise
         finally:
             self._busy = False
 
-    def _guarded(self, step: Any) -> Done:
-        """Run a step of model code; a Python error in it becomes the outcome ``error``."""
+    def _guarded(self, step: Any, handling_error: bool = False) -> Done:
+        """Run a part of a step. Whatever it raises (but Ctrl-C) becomes the outcome ``error``
+        of the innermost active state, once; a fault while an ``error`` is being handled, or
+        after the top state was left, ends the run with ``error`` at once."""
         try:
             return step()
-        except Exception as exc:
-            state = self.active()[-1] if self.active() else self.top
-            message = f"{type(exc).__name__} in model code: {exc}"
-            return self._error(state, message, state.LOCATION)
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # any fault of model or adapter code
+            message, location = (
+                (exc.message, exc.location) if isinstance(exc, _Fault) else (describe(exc), "")
+            )
+            active = self.active()
+            if handling_error or not active:
+                self._abort(message, location)
+                return None
+            state = active[-1]
+            return self._error(state, message, location or state.LOCATION)
 
-    def _enter(self, state: State, s: Snapshot) -> Done:
-        """Enter ``state`` and descend until something rests or completes."""
+    def _abort(self, message: str, location: str) -> None:
+        """End the run with ``error`` now: no exit action runs, the arm holds, the trace ends
+        with ``finished``. Safe against a trace or a clock that fails as well."""
+        origin = [state.path for state in reversed(self.active())] or [self.top.path]
+        self.fault = Fault(message, location, origin)
+        self.finished, self.outcome = True, ERROR
+        self._hold()
+        self._record("error", state=origin[0], message=message, location=location)
+        self._record("finished", outcome=ERROR)
+
+    def _interrupt(self) -> None:
+        """Ctrl-C: the arm holds and the trace ends with an ``interrupted`` record."""
+        active = [state.path for state in self.active()]
+        self.finished, self.outcome = True, INTERRUPTED
+        self._hold()
+        self._record(INTERRUPTED, active=active)
+
+    def _record(self, kind: str, **fields: Any) -> None:
+        """Write a closing record even when the adapter's clock fails (last known time)."""
+        try:
+            time = self.time
+        except KeyboardInterrupt:
+            raise
+        except BaseException:  # the run is ending; the record matters more
+            time = self._clock
+        with suppress(Exception):  # nothing is left to report a failing trace to
+            self.trace.write(time, kind, **fields)
+
+    def _enter(self, state: State, s: Snapshot, history: str = "") -> Done:
+        """Enter ``state`` and descend until something rests or completes; through a
+        ``history`` the last active child is entered instead of the initial one (and, for
+        ``deep`` history, so on below)."""
         while True:
             parent = state.parent
+            if isinstance(state, Choice):
+                return self._choose(state, s)
             if parent is not None:
                 parent.current = state
                 if state.name in parent.BINDINGS:  # an <<import>> state: arguments now
@@ -147,6 +255,7 @@ class Executor:
             if initialize is not None:
                 initialize(s)
             state.on_entry(s)
+            self._arm(state, s)
             violated = self._violated(state, s)
             if violated is not None:
                 return violated
@@ -156,10 +265,23 @@ class Executor:
                 return self._execute(state, s)
             if not isinstance(state, Composite):
                 return None
-            first = self._first_child(state, s)
+            remembered = state.last if history else None
+            if remembered is not None and not remembered.FINAL:
+                first: State | Done = remembered
+                history = "deep" if history == "deep" else ""
+            else:
+                first, history = self._first_child(state, s), ""
             if not isinstance(first, State):
                 return first
             state = first
+
+    def _choose(self, choice: Choice, s: Snapshot) -> Done:
+        """Leave a choice pseudostate at once by its first branch whose guard holds."""
+        parent = choice.parent
+        for transition in parent.transitions_from(choice.name):
+            if transition.guard is None or transition.guard(parent, s):
+                return self._take(parent, transition, s)
+        return self._error(parent, f"no branch of choice '{choice.name}' holds", choice.LOCATION)
 
     def _first_child(self, state: Composite, s: Snapshot) -> State | Done:
         """The child a composite starts in: through the first start condition that holds."""
@@ -185,7 +307,7 @@ class Executor:
         if t.target in owner.end_names:
             return (owner, t.target)
         target = owner.children[t.target]
-        return self._enter(target, s) if enter else target
+        return self._enter(target, s, t.history) if enter else target
 
     def _complete(self, state: State, outcome: str) -> Done:
         """``state`` ended with ``outcome``: leave it and let its parent react."""
@@ -194,12 +316,13 @@ class Executor:
             fields["origin"] = list(self.fault.origin)
         self._write("outcome", **fields)
         s = self.snapshot()
-        self._exit(state, s)
         parent = state.parent
         if parent is None:
             self.finished, self.outcome = True, outcome
+            self._exit(state, s)
             self._write("finished", outcome=outcome)
             return None
+        self._exit(state, s)
         for transition in parent.transitions_from(state.name):
             if _matches(transition, outcome, state) and (
                 transition.guard is None or transition.guard(parent, s)
@@ -217,23 +340,36 @@ class Executor:
         """Leave ``state`` and its active descendants, innermost first."""
         if isinstance(state, Composite) and state.current is not None:
             self._exit(state.current, s)
-        state.on_exit(s)
-        self._write("exit", state=state.path)
-        if state.parent is not None:
-            state.parent.current = None
+        try:
+            state.on_exit(s)
+        finally:  # left even when its exit action fails: the error belongs to the parent
+            self._write("exit", state=state.path)
+            for timer in [t for t in self._timers if t[0] is state]:
+                del self._timers[timer]
+            if state.parent is not None:
+                state.parent.last = state
+                state.parent.current = None
 
     def _error(self, state: State, message: str, location: str) -> tuple[State, str]:
         self.fault = Fault(message, location, [state.path])
-        self._write("error", state=state.path, message=message, location=location)
+        self._record("error", state=state.path, message=message, location=location)
         return (state, ERROR)
 
     # -- events ---------------------------------------------------------------------------
 
     def _find(self, event: str, s: Snapshot) -> tuple[State, Transition] | None:
-        """The innermost active state with an enabled transition for ``event``."""
+        """The innermost active state with an enabled transition for ``event``; a state's
+        internal transitions come before those that leave it."""
         for state in reversed(self.active()):
+            for transition in state.INTERNAL:
+                if transition.stimulus == event and (
+                    transition.guard is None or transition.guard(state, s)
+                ):
+                    return state, transition
             parent = state.parent
             if parent is None:
+                continue
+            if event in _completions(state):
                 continue
             for transition in parent.transitions_from(state.name):
                 if transition.stimulus == event and (
@@ -249,9 +385,47 @@ class Executor:
         found = self._find(event, s)
         if found is None:
             return False
-        state, transition = found
-        self._exit(state, s)
-        return self._take(state.parent, transition, s)
+        return self._react(*found, s)
+
+    def _react(self, state: State, transition: Transition, s: Snapshot) -> Done:
+        """Take an enabled transition of an active state: an internal one stays in it."""
+        if transition.target:
+            self._exit(state, s)
+            return self._take(state.parent, transition, s)
+        self._write("transition", state=state.path, source=state.name, target="",
+                    stimulus=transition.stimulus)  # fmt: skip
+        if transition.action is not None:
+            transition.action(state, s)
+        return None
+
+    # -- time events ----------------------------------------------------------------------
+
+    def _arm(self, state: State, s: Snapshot) -> None:
+        """Start the time events of a state just entered: its own and those leaving it."""
+        parent = state.parent
+        leaving = parent.transitions_from(state.name) if parent is not None else ()
+        for transition in leaving:
+            if transition.delay is not None:
+                self._timers[(state, transition)] = self.time + transition.delay(parent, s)
+        for transition in state.INTERNAL:
+            if transition.delay is not None:
+                self._timers[(state, transition)] = self.time + transition.delay(state, s)
+
+    def _due(self, now: float) -> Timer | None:
+        """The pending time event with the earliest deadline not after ``now``."""
+        due = [(deadline, timer) for timer, deadline in self._timers.items() if deadline <= now]
+        return min(due, key=lambda item: item[0])[1] if due else None
+
+    def _fire(self, timer: Timer) -> Done:
+        """A time event occurs once: taken when its guard holds, else dropped."""
+        del self._timers[timer]
+        state, transition = timer
+        s = self.snapshot()
+        owner = state if not transition.target else state.parent
+        self._write("event", name=transition.stimulus, state=state.path)
+        if transition.guard is not None and not transition.guard(owner, s):
+            return None
+        return self._react(state, transition, s)
 
     # -- actions --------------------------------------------------------------------------
 
@@ -263,23 +437,40 @@ class Executor:
             k: object_name(v) if isinstance(v, SceneObject) else v
             for k, v in action.arguments(s).items()
         }
-        stops = [StopCondition(c.name, _bound(c.holds, action)) for c in action.ENDS]
+        watch = _Watch()
+        stops = [
+            StopCondition(c.name, watch(_bound(c.holds, action), c.location or action.LOCATION))
+            for c in action.ENDS
+        ]
         preemptions = self._preemptions(action)
-        stops += [StopCondition(key, holds) for key, (_, _, holds) in preemptions.items()]
-        stops.append(StopCondition(EVENT_STOP, lambda snap: self._find_queued(snap)))
+        stops += [
+            StopCondition(key, watch(holds, location))
+            for key, (_, _, holds, location) in preemptions.items()
+        ]
+        stops.append(StopCondition(EVENT_STOP, watch(self._find_queued, action.LOCATION)))
+        if self._timers:
+            deadline = min(self._timers.values())
+            stops.append(StopCondition(TIMER_STOP, lambda _: self.time >= deadline))
         self._write("command", state=action.path, device=action.DEVICE, command=action.COMMAND,
                     budget=action.BUDGET)  # fmt: skip
         try:
             result = self.adapter.execute(
                 action.DEVICE, action.COMMAND, arguments, stops, action.BUDGET
             )
-        except Exception as exc:  # an adapter fault of any kind becomes the outcome `error`
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # any adapter fault, SystemExit too
             self._hold()
+            if watch.fault is not None:  # the adapter passed a stop predicate's fault on
+                raise watch.fault from None
             where = f"{action.DEVICE}.{action.COMMAND}"
-            return self._error(action, f"adapter fault in {where}: {exc}", action.LOCATION)
+            return self._error(action, f"adapter fault in {where}: {exc!r}", action.LOCATION)
+        if watch.fault is not None:
+            self._hold()
+            raise watch.fault
         names = {c.name for c in action.ENDS}
         if not isinstance(result, CommandResult) or (
-            result.outcome not in names | set(preemptions) | {TIMEOUT, EVENT_STOP}
+            result.outcome not in names | set(preemptions) | {TIMEOUT, EVENT_STOP, TIMER_STOP}
         ):
             self._hold()
             message = f"adapter broke the contract: {result!r} is no outcome of this command"
@@ -288,18 +479,21 @@ class Executor:
                     sensors=self._sensors(action))  # fmt: skip
         if result.outcome in preemptions:
             self._hold()
-            owner, outcome, _ = preemptions[result.outcome]
+            owner, outcome, _, _ = preemptions[result.outcome]
             return Preemption(action, owner, outcome)
         if result.outcome == EVENT_STOP:
             self._hold()
             return Preemption(action, event=self.events.popleft())
+        if result.outcome == TIMER_STOP:
+            self._hold()
+            return Preemption(action, timer=self._due(self.time))
         if result.outcome == TIMEOUT:
             self._hold()
         elif result.value is not None:
             action.store(result.value)
         return (action, result.outcome)
 
-    def _preemptions(self, action: Action) -> dict[str, tuple[Composite, str, Any]]:
+    def _preemptions(self, action: Action) -> dict[str, tuple[Composite, str, Any, str]]:
         """Stop predicates for the end-condition expressions of every enclosing state."""
         found = {}
         owner = action.parent
@@ -307,7 +501,8 @@ class Executor:
             for condition in owner.ENDS:
                 if condition.holds is not None:
                     key = f"{owner.path}#{condition.name}"
-                    found[key] = (owner, condition.name, _bound(condition.holds, owner))
+                    holds = _bound(condition.holds, owner)
+                    found[key] = (owner, condition.name, holds, condition.location)
             owner = owner.parent
         return found
 
@@ -323,15 +518,21 @@ class Executor:
         self._write("outcome", state=action.path, outcome=PREEMPTED)
         if preemption.owner is not None:
             return (preemption.owner, preemption.outcome)
+        if preemption.timer is not None:
+            return self._fire(preemption.timer)
         self._write("event", name=preemption.event)
         s = self.snapshot()
         return self._dispatch(preemption.event, s) or None
 
     def _hold(self) -> None:
+        if self.adapter is None:
+            return
         try:
             self.adapter.hold()
-        except Exception as exc:  # holding is best effort; the fault is reported anyway
-            self._write("error", state=self.top.path, message=f"hold failed: {exc}", location="")
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # holding is best effort, reported anyway
+            self._record("error", state=self.top.path, message=f"hold failed: {exc!r}", location="")
 
     def _sensors(self, action: Action) -> dict[str, Any]:
         if not action.SENSORS:
@@ -361,6 +562,31 @@ class Executor:
         return None
 
 
+def known_events(top: State) -> frozenset[str]:
+    """Every event the state tree can take: declared ones and the stimuli that are no
+    outcome of their source."""
+    found: set[str] = set(getattr(top, "EVENTS", None) or ())
+    internal = [t.stimulus for t in top.INTERNAL if t.delay is None]
+    found.update(internal)
+    if isinstance(top, Composite):
+        for transition in top.TRANSITIONS:
+            source = top.children.get(transition.source)
+            if source is None or transition.delay is not None or not transition.stimulus:
+                continue
+            if transition.stimulus not in _completions(source):
+                found.add(transition.stimulus)
+        for child in top.children.values():
+            found |= known_events(child)
+    return frozenset(found)
+
+
+def _completions(state: State) -> tuple[str, ...]:
+    """Outcomes ``state`` ends with: they fire only on completion, never as external events."""
+    if isinstance(state, Action | Composite):
+        return (*state.OUTCOMES, ERROR, TIMEOUT, PREEMPTED)
+    return (ERROR,)  # a violated invariant ends even a simple state
+
+
 def _matches(transition: Transition, outcome: str, child: State) -> bool:
     """The stimulus names the outcome, or is empty and the outcome is a declared one."""
     stimulus = transition.stimulus
@@ -369,3 +595,25 @@ def _matches(transition: Transition, outcome: str, child: State) -> bool:
 
 def _bound(holds: Any, owner: State) -> Any:
     return lambda s: bool(holds(owner, s))
+
+
+class _Watch:
+    """Wraps stop predicates: the first one that raises stops the command (it holds) and
+    keeps its fault, which the executor reports after the adapter returned."""
+
+    def __init__(self) -> None:
+        self.fault: _Fault | None = None
+
+    def __call__(self, holds: Any, location: str) -> Any:
+        def watched(s: Snapshot) -> bool:
+            if self.fault is not None:
+                return True
+            try:
+                return bool(holds(s))
+            except KeyboardInterrupt:
+                raise
+            except BaseException as exc:  # reported as the action's error
+                self.fault = _Fault(describe(exc), location)
+                return True
+
+        return watched

@@ -20,7 +20,12 @@ Effect = Callable[[Any, Snapshot], None]
 
 @dataclass(frozen=True)
 class Transition:
-    """``source -> target [guard] stimulus / action [post]`` between children of one state."""
+    """``source -> target [guard] stimulus / action [post]`` between children of one state.
+
+    An internal transition has no target and stays in its state; ``delay`` makes it a time
+    event ``after(delay)`` (seconds); ``history`` enters the target through its shallow or
+    deep history.
+    """
 
     source: str
     target: str
@@ -29,6 +34,8 @@ class Transition:
     action: Effect | None = None
     post: Predicate | None = None
     location: str = ""
+    delay: Callable[[Any, Snapshot], float] | None = None
+    history: str = ""  # "" | "shallow" | "deep"
 
 
 @dataclass(frozen=True)
@@ -55,6 +62,7 @@ class State:
     LAYER: ClassVar[str | None] = None
     OUTCOMES: ClassVar[tuple[str, ...]] = ()
     INVARIANTS: ClassVar[tuple[Invariant, ...]] = ()
+    INTERNAL: ClassVar[tuple[Transition, ...]] = ()  # internal transitions, owned by the state
     env: Any  # the run's runtime.environment.Environment, shared by every state
 
     def __init__(self, parent: Composite | None = None, name: str | None = None) -> None:
@@ -85,6 +93,7 @@ class Composite(State):
     def __init__(self, parent: Composite | None = None, name: str | None = None) -> None:
         super().__init__(parent, name)
         self.current: State | None = None
+        self.last: State | None = None  # the child active when it was last left (history)
         self.children: dict[str, State] = {n: c(self, n) for n, c in self.CHILDREN.items()}
         self.end_names = frozenset(c.name for c in self.ENDS)
 
@@ -104,6 +113,10 @@ class Final(State):
     """A final state: entering it completes its parent with the final state's name."""
 
     FINAL = True
+
+
+class Choice(State):
+    """A choice pseudostate: left at once by the first branch whose guard holds."""
 
 
 class Action(State):

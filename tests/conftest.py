@@ -13,7 +13,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:] = [entry for entry in sys.path if Path(entry or ".").resolve() != ROOT]
 
 
-@pytest.fixture(autouse=True)
-def private_parse_cache(tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch):
-    """Keep the on-disk parse cache of tests (and of the servers they start) out of $HOME."""
-    monkeypatch.setenv("LIGHTROCKS_CACHE", str(tmp_path_factory.getbasetemp() / "parse-cache"))
+@pytest.fixture(autouse=True, scope="session")
+def _private_run_cache(tmp_path_factory: pytest.TempPathFactory):
+    """Runs cache their generated code under a temporary folder, not the user's cache."""
+    patch = pytest.MonkeyPatch()
+    patch.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("user-cache")))
+    yield
+    patch.undo()

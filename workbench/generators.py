@@ -9,9 +9,6 @@ forking the generator (MontiCore's template path).
 
 from __future__ import annotations
 
-import os
-import shutil
-import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cache
@@ -22,6 +19,7 @@ from typing import Protocol
 import jinja2
 
 from lightrocks.workbench.check import CheckContext
+from lightrocks.workbench.files import write_tree
 
 
 @dataclass
@@ -79,46 +77,11 @@ def template_environment(builtin: Path, override: Path | None) -> jinja2.Environ
 
 
 def write_all(output: Path, files: Mapping[str, str | bytes]) -> list[Path]:
-    """Write every file or none. A missing ``output`` is staged whole beside where it goes
-    and renamed into place; an existing one gets a staging folder inside, moved from."""
-    created = not output.exists()
-    if not created and not output.is_dir():
+    """Write every file or none, even when the process is killed (see
+    :func:`workbench.files.write_tree`)."""
+    if output.exists() and not output.is_dir():
         raise GenerationError(f"output '{output}' is not a folder")
     try:
-        if created:
-            output.parent.mkdir(parents=True, exist_ok=True)
-        staging = Path(
-            tempfile.mkdtemp(prefix=".lightrocks-", dir=output.parent if created else output)
-        )
+        return write_tree(output, files)
     except OSError as error:
         raise GenerationError(f"cannot write to '{output}': {error.strerror}") from None
-    try:
-        for relative, content in sorted(files.items()):
-            staged = staging / relative
-            staged.parent.mkdir(parents=True, exist_ok=True)
-            if isinstance(content, bytes):
-                staged.write_bytes(content)
-            else:
-                staged.write_text(content, encoding="utf-8", newline="\n")
-        if created:
-            staging.chmod(0o777 & ~_umask())
-            os.rename(staging, output)
-            return [output / relative for relative in sorted(files)]
-        written: list[Path] = []
-        for relative in sorted(files):
-            target = output / relative
-            target.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(staging / relative, target)
-            written.append(target)
-        return written
-    except OSError as error:
-        raise GenerationError(f"cannot write to '{output}': {error.strerror}") from None
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
-
-
-def _umask() -> int:
-    """The process's file-creation mask (read by setting it, then restoring it)."""
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask

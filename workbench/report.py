@@ -1,9 +1,11 @@
 """Rendering of findings: text for people, JSON for tools, SARIF for code scanning, and
-GitHub workflow annotations."""
+GitHub workflow annotations. Model text (file names, quoted source) is neutralised first, so
+it can neither drive a terminal nor add a workflow command."""
 
 from __future__ import annotations
 
 import json
+import unicodedata
 from collections.abc import Callable, Sequence
 from importlib.metadata import version
 
@@ -15,8 +17,17 @@ _SARIF_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.I
 _GITHUB_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
 
+_UNSAFE = {"Cc", "Cf", "Zl", "Zp"}  # controls, format (bidi) and line/paragraph separators
+
+
+def printable(text: str) -> str:
+    """``text`` for a terminal: control and format characters (escape sequences, BEL, line
+    breaks, bidi overrides) are shown as Python escapes (``\\x1b``) instead of acting."""
+    return "".join(repr(c)[1:-1] if unicodedata.category(c) in _UNSAFE else c for c in text)
+
+
 def text(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
-    lines = [str(d) for d in diagnostics]
+    lines = [printable(str(d)) for d in diagnostics]
     errors = sum(d.severity is Severity.ERROR for d in diagnostics)
     warnings = sum(d.severity is Severity.WARNING for d in diagnostics)
     lines.append(f"{errors} error(s), {warnings} warning(s)")
@@ -85,14 +96,21 @@ def sarif(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
 
 
 def github(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
-    def escape(value: str) -> str:
-        return value.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
-
     return "\n".join(
-        f"::{_GITHUB_LEVEL[d.severity]} file={d.file},line={d.line},col={d.column},"
-        f"title={d.code}::{escape(d.message + (f' ({d.hint})' if d.hint else ''))}"
+        f"::{_GITHUB_LEVEL[d.severity]} file={_property(d.file)},line={d.line},col={d.column},"
+        f"title={_property(d.code)}::{_data(d.message + (f' ({d.hint})' if d.hint else ''))}"
         for d in diagnostics
     )
+
+
+def _data(value: str) -> str:
+    """A workflow command's message: one line, no terminal controls."""
+    return printable(value.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A"))
+
+
+def _property(value: str) -> str:
+    """A workflow command's property value: also no ``:`` or ``,`` that end it."""
+    return _data(value).replace(":", "%3A").replace(",", "%2C")
 
 
 FORMATS: dict[str, Callable[[Sequence[Diagnostic], Sequence[CoCo]], str]] = {

@@ -83,9 +83,19 @@ class _Builder:
                 cluster.nodes.append(Node(marker, "", "point", "filled"))
                 anchor, inner = members[name]
                 self.edges.append(Edge(marker, anchor, head=inner))
+        for name, pseudostate in region.pseudostates.items():
+            node_id = quote(f"{path}/{name}")
+            if pseudostate.kind == "choice":
+                cluster.nodes.append(Node(node_id, "", "diamond", "solid"))
+            else:
+                label = "H*" if pseudostate.kind == "deep history" else "H"
+                cluster.nodes.append(Node(node_id, label, "circle", "solid"))
+            ends[name] = node_id
         for transition in region.transitions:
             source, tail = members.get(transition.source, (ends.get(transition.source, ""), ""))
             target, head = members.get(transition.target, (ends.get(transition.target, ""), ""))
+            if transition.target_history and head:  # into the history node inside the cluster
+                target, head = quote(f"{path}/{transition.target}/{transition.target_history}"), ""
             if source and target:
                 self.edges.append(Edge(source, target, _label(transition), tail, head))
         first = cluster.nodes or [Node(quote(f"{path}/empty"), "", "point", "invis")]
@@ -100,6 +110,8 @@ class _Builder:
         if state.arguments:
             heading += "(" + ", ".join(printer.arguments(state.arguments)) + ")"
         region = info.region
+        if region is not None:  # internal transitions are listed under the name, as in UML
+            heading += "".join(f"\n{_label(t)}" for t in region.internal)
         if region is None and info.imported is not None and depth > 0:
             region = info.imported.region
             depth -= 1
@@ -113,8 +125,9 @@ class _Builder:
         return cluster.anchor, cluster.id
 
 
-def _label(transition: ast.Transition) -> str:
-    parts = [transition.stimulus]
+def _label(transition: ast.Transition | ast.InternalTransition) -> str:
+    arguments = ", ".join(printer.expression(a) for a in transition.stimulus_arguments)
+    parts = [transition.stimulus + (f"({arguments})" if arguments else "")]
     if transition.guard is not None:
         parts.append(f"[{printer.expression(transition.guard)}]")
     if transition.action:

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from lightrocks.generators.python import expressions as code
 from lightrocks.generators.python.expressions import CompileError, Scope
-from lightrocks.generators.python.names import identifier
+from lightrocks.generators.python.names import alias, identifier, nested
 from lightrocks.languages.domain.types import (
     BOOLEAN,
     FRAME,
@@ -69,8 +69,15 @@ class ModuleView:
     typing_names: list[str] = field(default_factory=list)
 
 
+def module_parts(qualified_name: str) -> list[str]:
+    """The package path of a statechart's module (the domain module is the generator's)."""
+    if qualified_name == DOMAIN:
+        return [DOMAIN]
+    return [identifier(part) for part in qualified_name.split(".")]
+
+
 def module_path(qualified_name: str) -> str:
-    return "/".join(identifier(part) for part in qualified_name.split(".")) + ".py"
+    return "/".join(module_parts(qualified_name)) + ".py"
 
 
 def python_type(t: Type | None) -> str:
@@ -95,6 +102,22 @@ def python_type(t: Type | None) -> str:
     return "Any"
 
 
+def value_type(t: Type | None) -> tuple:
+    """What a run parameter of model type ``t`` accepts, as plain data for the generated
+    class (``PARAMETER_TYPES``): kind, type name, and the dimension exponents of its
+    numbers (one for a quantity, one per element for a vector)."""
+    if isinstance(t, QuantityT):
+        kind = "integer" if t.name == "Integer" else "quantity"
+        return (kind, t.name, (t.dimension.exponents,))
+    if isinstance(t, VectorT) and all(isinstance(e, QuantityT) for e in t.elements):
+        return ("vector", t.name, tuple(e.dimension.exponents for e in t.elements))
+    if t == BOOLEAN:
+        return ("boolean", "Boolean", ())
+    if t == STRING:
+        return ("string", "String", ())
+    return ("other", str(t), ())
+
+
 def seconds(text: str | None) -> float | None:
     """A ``<<timeout="5 s">>`` value in seconds."""
     if not text:
@@ -117,20 +140,24 @@ class Builder:
         self.classes: dict[int, tuple[str, str]] = {}  # id(StateInfo) -> (module, class)
         self.components = sorted(typing.models.components, key=lambda c: c.qualified_name)
         for component in self.components:
-            self._register(component.qualified_name, component.name, component.region)
+            module = component.qualified_name
+            self._register(module, _component_class(component), component.region)
 
-    def _register(self, module: str, prefix: str, region: Region) -> None:
+    def _register(self, module: str, outer: str, region: Region) -> None:
         for info in region.states.values():
             if id(info) not in self.classes:
-                self.classes[id(info)] = (module, f"{identifier(prefix)}_{identifier(info.name)}")
+                self.classes[id(info)] = (module, nested(outer, info.name))
                 if info.region is not None:
-                    self._register(module, f"{prefix}_{info.name}", info.region)
+                    self._register(module, nested(outer, info.name), info.region)
 
     # -- modules --------------------------------------------------------------------------
 
     def module(self, component: Component) -> ModuleView:
         self.imports: dict[str, tuple[str, str]] = {}  # alias -> (module, name)
         self.current = component.qualified_name
+        self.local = {_component_class(component)} | {
+            name for module, name in self.classes.values() if module == self.current
+        }
         view = ModuleView(source=_safe(component.region.position.file))
         own = component.loaded
         classes: list[ClassView] = []
@@ -138,24 +165,25 @@ class Builder:
         classes.append(self._component(component))
         view.classes = classes
         depth = component.qualified_name.count(".")
-        for alias, (module, name) in sorted(self.imports.items(), key=lambda i: (i[1], i[0])):
+        for used, (module, name) in sorted(self.imports.items(), key=lambda i: (i[1], i[0])):
             dots = "." * (depth + 1)
-            path = ".".join(identifier(p) for p in module.split("."))
-            named = name if alias == name else f"{name} as {alias}"
+            path = ".".join(module_parts(module))
+            named = name if used == name else f"{name} as {used}"
             view.imports.append(f"from {dots}{path} import {named}")
         text = repr(view)
         view.typing_names = [n for n in ("Any", "ClassVar") if re.search(rf"\b{n}\b", text)]
         return view
 
     def _use(self, module: str, name: str) -> str:
-        """A class of another module, imported under a unique alias."""
+        """A class of another module: under its own name while that is free in this module,
+        else under an alias of the generator's own."""
         if module == self.current:
             return name
-        alias = name
-        while alias in self.imports and self.imports[alias] != (module, name):
-            alias = identifier(module.replace(".", "_")) + "_" + name
-        self.imports[alias] = (module, name)
-        return alias
+        used = name
+        if name in self.local or self.imports.get(name, (module, name)) != (module, name):
+            used = alias(module_parts(module), name)
+        self.imports[used] = (module, name)
+        return used
 
     def _class_of(self, info: StateInfo) -> str:
         if info.imported is not None and info.region is None:
@@ -194,6 +222,7 @@ class Builder:
         elif info.region is not None:  # a body with actions only: still a simple state
             scope = Scope(self.typing, info.region)
             self._actions(info.region, view, scope)
+            self._internal(info.region, view, scope)
             inner = [(i.expression, scope, i.position) for i in info.region.invariants]
             self._invariants(view, invariants + inner)
         elif invariants:
@@ -230,8 +259,15 @@ class Builder:
         cell = self._cell(component)
         if cell is not None:
             view.constants.append(f"CELL = {self._use(DOMAIN, cell)}")
+        if region.events is not None:
+            view.constants.append(f"EVENTS = {_tuple(repr(e) for e in region.events)}")
         mapping = ", ".join(f"{n!r}: {identifier(n)!r}" for n in region.parameters)
         view.constants.append(f"PARAMETERS: ClassVar[dict[str, str]] = {{{mapping}}}")
+        declared_types = {
+            name: value_type(self.typing.types.resolve(region.loaded, parameter.type))
+            for name, parameter in region.parameters.items()
+        }
+        view.constants.append(f"PARAMETER_TYPES: ClassVar[dict[str, tuple]] = {declared_types!r}")
         scope = Scope(self.typing, region)
         for parameter in region.parameters.values():
             declared = self.typing.types.resolve(region.loaded, parameter.type)
@@ -261,7 +297,10 @@ class Builder:
         initial = next((s.name for s in region.states.values() if s.state.is_initial), None)
         if initial is not None:
             view.constants.append(f"INITIAL = {initial!r}")
-        children = ", ".join(f"{n!r}: {self._class_of(i)}" for n, i in region.states.items())
+        children = ", ".join(
+            [f"{n!r}: {self._class_of(i)}" for n, i in region.states.items()]
+            + [f"{n!r}: rt.Choice" for n, p in region.pseudostates.items() if p.kind == "choice"]
+        )
         view.tables.append(f"CHILDREN: ClassVar[dict[str, type[rt.State]]] = {{{children}}}")
         bindings = []
         for info in region.states.values():
@@ -274,6 +313,42 @@ class Builder:
         view.tables.append("STARTS = " + self._conditions(region.start_conditions, view, scope))
         view.tables.append("ENDS = " + self._conditions(region.end_conditions, view, scope))
         view.tables.append("TRANSITIONS = " + self._transitions(region, view, scope))
+        self._internal(region, view, scope)
+
+    def _internal(self, region: Region, view: ClassView, scope: Scope) -> None:
+        """The internal transitions of the state that owns ``region``."""
+        items = []
+        for index, t in enumerate(region.internal):
+            named = self._reaction(t, f"internal_{index}", view, scope)
+            extra = "".join(f", {k}={v}" for k, v in named.items() if v != "None")
+            items.append(
+                f"rt.Transition('', '', {t.stimulus!r}{extra}, location={str(t.position)!r})"
+            )
+        if items:
+            view.tables.append(f"INTERNAL = {_tuple(items)}")
+
+    def _reaction(
+        self,
+        t: ast.Transition | ast.InternalTransition,
+        suffix: str,
+        view: ClassView,
+        scope: Scope,
+    ) -> dict[str, str]:
+        """Methods for the guard, action and delay of a transition, by keyword."""
+        guard = action = delay = "None"
+        if t.guard is not None:
+            guard = f"_guard_{suffix}"
+            body = [f"return {self._expr(t.guard, scope)}"]
+            view.methods.append(Method(guard, ", s: rt.Snapshot", "bool", body))
+        if t.action:
+            action = f"_action_{suffix}"
+            body = self._statements(t.action, scope)
+            view.methods.append(Method(action, ", s: rt.Snapshot", "None", body))
+        if t.stimulus == "after" and len(t.stimulus_arguments) == 1:
+            delay = f"_delay_{suffix}"
+            body = [f"return {self._expr(t.stimulus_arguments[0], scope)}"]
+            view.methods.append(Method(delay, ", s: rt.Snapshot", "float", body))
+        return {"guard": guard, "action": action, "delay": delay}
 
     def _bindings(self, info: StateInfo, scope: Scope) -> str:
         names = list(info.imported.region.parameters)
@@ -298,20 +373,15 @@ class Builder:
     def _transitions(self, region: Region, view: ClassView, scope: Scope) -> str:
         items = []
         for index, t in enumerate(region.transitions):
-            guard = action = post = "None"
-            if t.guard is not None:
-                guard = f"_guard_{index}"
-                body = [f"return {self._expr(t.guard, scope)}"]
-                view.methods.append(Method(guard, ", s: rt.Snapshot", "bool", body))
-            if t.action:
-                action = f"_action_{index}"
-                body = self._statements(t.action, scope)
-                view.methods.append(Method(action, ", s: rt.Snapshot", "None", body))
+            named = self._reaction(t, str(index), view, scope)
             if t.postcondition is not None:
-                post = f"_post_{index}"
+                named["post"] = f"_post_{index}"
                 body = [f"return {self._expr(t.postcondition, scope)}"]
-                view.methods.append(Method(post, ", s: rt.Snapshot", "bool", body))
-            named = {"guard": guard, "action": action, "post": post}
+                view.methods.append(Method(named["post"], ", s: rt.Snapshot", "bool", body))
+            if t.target_history:
+                inner = region.states[t.target].region
+                kind = inner.pseudostates[t.target_history].kind if inner else "history"
+                named["history"] = repr("deep" if kind == "deep history" else "shallow")
             extra = "".join(f", {k}={v}" for k, v in named.items() if v != "None")
             items.append(
                 f"rt.Transition({t.source!r}, {t.target!r}, {t.stimulus!r}{extra}, "

@@ -9,7 +9,10 @@ from lightrocks.generators.selection import is_action, selected
 from lightrocks.generators.sfc_iec61131.build import Unit, UnitBuilder
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.generators.sfc_iec61131.expressions import time_literal
+from lightrocks.generators.sfc_iec61131.frames import FRAME_FIELDS, FUNCTIONS
 from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.languages.lightrocks.model import Component
+from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
 TEMPLATES = Path(__file__).parent / "templates"
@@ -26,25 +29,39 @@ def prioritize(unit: Unit) -> None:
                 transition.priority = given[transition.source]
 
 
+def build_unit(top: Component, typing: Typing) -> Unit:
+    """The blocks of ``top``'s compilation unit, with their transitions prioritized."""
+    unit = UnitBuilder(top, typing).build()
+    prioritize(unit)
+    return unit
+
+
+def interval_option(request: GenerationRequest) -> str:
+    """The task cycle (option ``interval_ms``, default 1) as a TIME literal."""
+    interval = request.options.get("interval_ms", "1")
+    if not interval.isdigit() or int(interval) == 0:
+        raise GenerationError(f"option interval_ms='{interval}' is not a whole number > 0")
+    return time_literal(int(interval) / 1000)
+
+
 class SfcGenerator:
     name = "sfc"
     description = "IEC 61131-3 textual SFC for PLCs (option interval_ms=1: the task cycle)"
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
         environment = template_environment(TEMPLATES, request.templates)
-        interval = request.options.get("interval_ms", "1")
-        if not interval.isdigit() or int(interval) == 0:
-            raise GenerationError(f"option interval_ms='{interval}' is not a whole number > 0")
+        interval = interval_option(request)
         typing = analysis(request.context).typing
         files: dict[str, str] = {}
         for top in selected(request):
             if is_action(top):
                 continue
-            unit = UnitBuilder(top, typing).build()
-            prioritize(unit)
+            unit = build_unit(top, typing)
             text = environment.get_template("unit.st.jinja").render(
                 unit=unit,
-                interval=time_literal(int(interval) / 1000),
+                interval=interval,
+                frames=FUNCTIONS,
+                frame_fields=FRAME_FIELDS,
             )
             problems = check_sfc(text)
             if problems:

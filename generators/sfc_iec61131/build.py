@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from lightrocks.generators.selection import is_action, reachable
-from lightrocks.generators.sfc_iec61131.expressions import Scope, field_name, literal, time_literal
+from lightrocks.generators.sfc_iec61131.expressions import Scope, literal, time_literal
 from lightrocks.generators.sfc_iec61131.names import Namer
 from lightrocks.languages.domain.types import (
     BOOLEAN,
@@ -28,13 +28,19 @@ from lightrocks.languages.domain.types import (
     Type,
     VectorT,
 )
-from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
+from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, Component, Region, StateInfo
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup
 from lightrocks.workbench.generators import GenerationError
 
 DEFAULT_TIMEOUT = 30.0
+# The handshake of a device block, written by the integrator's driver (docs/generators.md).
+STATUS = {
+    "busy": "TRUE from accepting a command (after clearing done and error) until its flag falls",
+    "done": "TRUE once the accepted command has settled",
+    "error": "TRUE when the accepted command failed",
+}
 FRAME_FUNCTIONS = ("FRAME_MUL", "ROT_X", "ROT_Y", "ROT_Z", "TRANSL")
 
 
@@ -88,6 +94,10 @@ class Block:
     outcomes: dict[str, str] = field(default_factory=dict)
     commands: dict[str, tuple[str, dict[str, str], str]] = field(default_factory=dict)
     members: dict[str, str] = field(default_factory=dict)
+    # what a step stands for: ST step -> (state path in the block, outcome taken or "")
+    states: dict[str, tuple[str, str]] = field(default_factory=dict)
+    instances: dict[str, str] = field(default_factory=dict)  # instance -> hosting state path
+    events: dict[str, str] = field(default_factory=dict)  # LightRocks event -> input
 
 
 @dataclass
@@ -112,6 +122,7 @@ class Unit:
     configuration: str
     resource: str
     task: str
+    cell: dict[str, str] = field(default_factory=dict)  # device or object -> its global
 
 
 class UnitBuilder:
@@ -121,6 +132,8 @@ class UnitBuilder:
         self.top = top
         self.typing = typing
         self.globals = Namer()
+        for name in ("pose", "x", "y", "z", "xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"):
+            self.globals.field(name)
         for name in ("Frame", "SceneObject", *FRAME_FUNCTIONS):
             self.globals.claim(name)
         self.types: dict[str, TypeDeclaration] = {}
@@ -150,7 +163,7 @@ class UnitBuilder:
                     declaration.alias = f"ARRAY[0..{len(t.elements) - 1}] OF {element}"
                 else:
                     declaration.fields = [
-                        Variable(field_name(n), self.st_type(ft)) for n, ft in t.fields
+                        Variable(self.globals.field(n), self.st_type(ft)) for n, ft in t.fields
                     ]
                 declaration.name = self.globals.claim(t.name)
                 self.types[t.name] = declaration
@@ -178,7 +191,7 @@ class UnitBuilder:
                     attribute_type = self.typing.types.resolve(loaded, attribute.type)
                     self.object_fields.setdefault(
                         attribute.name,
-                        Variable(field_name(attribute.name), self.st_type(attribute_type)),
+                        Variable(self.globals.field(attribute.name), self.st_type(attribute_type)),
                     )
         for member in self.cell_members.values():
             member.name = self.globals.claim(member.name)
@@ -189,27 +202,26 @@ class UnitBuilder:
             return self.devices[device.name]
         block = Block(self.globals.claim(device.name), f"device interface of {device.name}")
         self.devices[device.name] = block
-        names = Namer(self.globals)
+        names = self.globals.scope()
         loaded = self.typing._declaring(device)
         for sensor in device.sensors:
-            sensor_type = self.typing.types.resolve(loaded, sensor.type)
-            variable = Variable(names.claim(sensor.name), self.st_type(sensor_type))
+            name = names.claim(sensor.name)  # the integrator's name wins over a type's
+            variable = Variable(name, self.st_type(self.typing.types.resolve(loaded, sensor.type)))
             block.members[sensor.name] = variable.name
             block.outputs.append(variable)
-        for status in ("busy", "done", "error"):  # a sensor of that name is that output
+        for status, meaning in STATUS.items():  # a sensor of that name is that output
             if status not in block.members:
                 block.members[status] = names.claim(status)
-                block.outputs.append(Variable(block.members[status], "BOOL"))
+                block.outputs.append(Variable(block.members[status], "BOOL", comment=meaning))
         resets: list[str] = []
         for command in device.commands:
             flag = names.claim(command.name)
             block.inputs.append(Variable(flag, "BOOL", comment="TRUE runs the command"))
             parameters: dict[str, str] = {}
             for parameter in command.parameters:
+                name = names.claim(f"{command.name}_{parameter.name}")
                 parameter_type = self.typing.types.resolve(loaded, parameter.type)
-                variable = Variable(
-                    names.claim(f"{command.name}_{parameter.name}"), self.st_type(parameter_type)
-                )
+                variable = Variable(name, self.st_type(parameter_type))
                 parameters[parameter.name] = variable.name
                 block.inputs.append(variable)
                 initial = literal(parameter.default) if parameter.default else None
@@ -229,7 +241,11 @@ class UnitBuilder:
                 block.body += [f"IF NOT {flag} THEN", *resets, "END_IF;"]
                 resets = []
         running = " OR ".join(v[0] for v in block.commands.values()) or "FALSE"
-        block.body.append(f"{block.members['busy']} := {running};")
+        block.body += [
+            f"IF NOT ({running}) THEN",
+            f"  {block.members['busy']} := FALSE;",
+            "END_IF;",
+        ]
         return block
 
     # -- components ------------------------------------------------------------------------
@@ -243,14 +259,18 @@ class UnitBuilder:
             self.blocks[component.qualified_name] = ComponentBuilder(self, component).build()
         top = self.blocks[self.top.qualified_name]
         program = Block(self.globals.claim(f"{self.top.name}_Program"), "runs the top task")
-        names = Namer(self.globals)
+        names = self.globals.scope()
         program.externals = [Variable(v.name, v.type) for v in self.cell_members.values()]
         start = names.claim("start")
         instance = names.claim(f"{self.top.name}_fb")
         program.inputs = [Variable(start, "BOOL", comment="TRUE starts the task")]
+        passed = [f"execute := {start}"]
+        for event, name in top.events.items():
+            program.inputs.append(Variable(names.claim(name), "BOOL", comment=f"event {event}"))
+            passed.append(f"{name} := {program.inputs[-1].name}")
         program.locals = [Variable(instance, top.name)]
         calls = [f"{v.name}();" for v in self.cell_members.values() if v.type != "SceneObject"]
-        program.body = [*calls, f"{instance}(execute := {start});"]
+        program.body = [*calls, f"{instance}({', '.join(passed)});"]
         return Unit(
             self.top,
             [self.types[k] for k in self.types],
@@ -263,11 +283,56 @@ class UnitBuilder:
             self.globals.claim(f"{self.top.name}_Cell"),
             self.globals.claim("Controller"),
             self.globals.claim("Cyclic"),
+            {name: v.name for name, v in self.cell_members.items()},
         )
 
 
+@dataclass
+class Node:
+    """A state of a component's hierarchy; composite states are flattened into their leaves."""
+
+    info: StateInfo
+    parent: Node | None  # the composite state whose region holds this one; None at the top
+    region: Region  # the region that holds this state
+
+    @property
+    def name(self) -> str:
+        return self.info.name
+
+    @property
+    def path(self) -> list[str]:
+        return [*self.parent.path, self.name] if self.parent else [self.name]
+
+    @property
+    def children(self) -> Region | None:
+        region = self.info.region
+        return region if region is not None and region.states else None
+
+    def chain(self) -> list[Node]:
+        """This state and its enclosing states, innermost first."""
+        return [self, *(self.parent.chain() if self.parent else [])]
+
+
+@dataclass
+class Branch:
+    """One way out of a step: its condition, then the statements, then where it goes."""
+
+    condition: list[str]
+    statements: list[str]
+    target: str
+    postcondition: str = ""
+    violated: list[Branch] = field(default_factory=list)  # where a broken postcondition goes
+
+
 class ComponentBuilder:
-    """The FUNCTION_BLOCK of one task or skill."""
+    """The FUNCTION_BLOCK of one task, skill or plain statechart.
+
+    Composite states are flattened: every leaf is a step, a transition of a composite leaves
+    from each of its leaves after their own transitions (innermost first, as at run time),
+    and the exit, transition and entry statements of a transition run in a step of their own
+    between source and target. An action's outcome is taken in a settle step that stops the
+    command and runs the action's exit statements before any guard reads their effect.
+    """
 
     def __init__(self, unit: UnitBuilder, component: Component) -> None:
         self.unit = unit
@@ -277,8 +342,12 @@ class ComponentBuilder:
         self.block = Block(
             unit.globals.claim(component.name), f"<<{layer}>> {component.qualified_name}"
         )
-        self.names = Namer(unit.globals)
+        self.names = unit.globals.scope()
         self.scope = self._scope(self.region, {})
+        self.events: dict[str, str] = {}
+        self.leaves: dict[int, str] = {}  # id(node) -> step of a resting leaf
+        self.exits: dict[str, str] = {}
+        self.stops: dict[int, list[str]] = {}  # id(node) -> lines that stop its command
 
     def _scope(self, region: Region, names: dict[str, str]) -> Scope:
         env = self.unit.typing.environment(region)
@@ -287,15 +356,19 @@ class ComponentBuilder:
         def sensor(device: DeviceT, name: str) -> str:
             return self.unit.device_block(device).members.get(name, name)
 
-        return Scope({**members, **names}, lambda e: self.unit.typing.infer(e, env), sensor)
+        return Scope(
+            {**members, **names},
+            lambda e: self.unit.typing.infer(e, env),
+            sensor,
+            self.unit.globals.field,
+        )
 
     def build(self) -> Block:
         block, region = self.block, self.region
+        self._refuse_unmapped()
         block.externals = [Variable(v.name, v.type) for v in self.unit.cell_members.values()]
-        for variable in block.externals:
-            self.names.claim(variable.name)
-        execute = self.names.claim("execute")
-        block.inputs.append(Variable(execute, "BOOL", comment="TRUE runs, FALSE resets"))
+        self.execute = self.names.claim("execute")
+        block.inputs.append(Variable(self.execute, "BOOL", comment="TRUE runs, FALSE resets"))
         for parameter in region.parameters.values():
             declared = self.unit.typing.types.resolve(region.loaded, parameter.type)
             variable = Variable(self.names.claim(parameter.name), self.unit.st_type(declared))
@@ -306,82 +379,141 @@ class ComponentBuilder:
                 variable.initial = literal(parameter.default) if parameter.default else ""
                 block.inputs.append(variable)
         self.scope.names.update(block.parameters)
-        for outcome in ("done", "error", *(c.name for c in region.end_conditions)):
+        for outcome in ("done", "error", *region.outcomes):
             if outcome not in block.outcomes:
                 block.outcomes[outcome] = self.names.claim(outcome)
                 block.outputs.append(Variable(block.outcomes[outcome], "BOOL"))
-        if any(info.region is not None for info in region.states.values()):
-            raise GenerationError(
-                f"{self.component.qualified_name}: states with a body are not supported by "
-                "the SFC target; import a statechart instead"
-            )
         self.idle = self._step("Idle", initial=True)
-        self._body("Idle", "P1", [f"{v.name} := FALSE;" for v in block.outputs])
-        self.steps = {name: self._step(name) for name in region.states}
-        self.exits: dict[str, str] = {}
-        self._entries()
-        for name, info in region.states.items():
-            self._child(name, info)
+        self._body(self.idle.name, "P1", [f"{v.name} := FALSE;" for v in block.outputs])
+        self.nodes = self._nodes(region, None)
+        for node in self._all(self.nodes):
+            if node.children is None and not node.info.state.is_final:
+                self.leaves[id(node)] = self._step("_".join(node.path)).name
+                block.states[self.leaves[id(node)]] = ("/".join(node.path), "")
+        self._start()
+        for node in self._all(self.nodes):
+            if id(node) in self.leaves:
+                self._leaf(node)
+        for name, variable in self.events.items():
+            block.inputs.append(Variable(variable, "BOOL", comment=f"event {name}: one cycle"))
+        block.events = dict(self.events)
         return block
+
+    def _refuse_unmapped(self) -> None:
+        """Constructs the SFC mapping does not cover yet end generation with their place,
+        instead of a network that would mean something else."""
+        for region in self.region.regions():
+            found = [
+                (p.position, f"{p.kind} pseudostate '{p.name}'")
+                for p in region.pseudostates.values()
+            ]
+            found += [(t.position, "internal transition") for t in region.internal]
+            found += [
+                (t.position, "time event after(…)")
+                for t in region.transitions
+                if t.delay is not None
+            ]
+            found += [
+                (t.position, "entry through history")
+                for t in region.transitions
+                if t.target_history
+            ]
+            if found:
+                position, what = min(found, key=lambda item: (item[0].line, item[0].column))
+                raise GenerationError(
+                    f"{position}: {self.component.qualified_name}: the SFC target does not map "
+                    f"a {what} yet"
+                )
+
+    def _nodes(self, region: Region, parent: Node | None) -> list[Node]:
+        nodes = []
+        for info in region.states.values():
+            node = Node(info, parent, region)
+            nodes.append(node)
+            if node.children is not None:
+                node.nested = self._nodes(node.children, node)
+        return nodes
+
+    def _all(self, nodes: list[Node]) -> list[Node]:
+        found = []
+        for node in nodes:
+            found.append(node)
+            found += self._all(getattr(node, "nested", []))
+        return found
 
     # -- steps, actions, transitions -------------------------------------------------------
 
     def _step(self, name: str, initial: bool = False) -> Step:
-        step = Step(self.names.claim(name), initial)
+        step = Step(self.names.claim_macro(name), initial)
         self.block.steps.append(step)
         return step
 
     def _body(self, step: str, qualifier: str, lines: list[str]) -> None:
+        if not lines:
+            return
         suffix = {"P1": "entry", "N": "run", "P0": "exit"}[qualifier]
-        action = Action(self.names.claim(f"{step}_{suffix}"), lines)
+        action = Action(self.names.claim_macro(f"{step}_{suffix}"), lines)
         self.block.actions.append(action)
         owner = next(s for s in self.block.steps if s.name == step)
         owner.actions.append((action.name, qualifier))
 
     def _go(self, source: str, target: str, condition: str) -> None:
         name = self.names.claim(f"{source}_to_{target}")
-        self.block.transitions.append(Transition(name, source, target, condition))
+        self.block.transitions.append(Transition(name, source, target, condition or "TRUE"))
 
-    def _target(self, transition: ast.Transition, source: str, condition: str) -> None:
-        """Go to the transition's target; its statements run in a step of their own first."""
-        target = self._state_or_exit(transition.target)
-        if transition.action:
-            lines = [line for s in transition.action for line in self._statement(s, self.scope)]
-            between = self._step(f"{source}_{transition.target}_do").name
-            self._body(between, "P1", lines)
-            self._go(source, between, condition)
-            self._go(between, target, "TRUE")
-        else:
-            self._go(source, target, condition)
+    def _branches(self, source: str, branches: list[Branch]) -> None:
+        """Exclusive transitions from ``source``: each branch requires no earlier one to hold.
 
-    def _state_or_exit(self, name: str) -> str:
-        if name in self.steps:
-            return self.steps[name].name
-        if name not in self.exits:
-            exit_step = self._step(f"Exit_{name}").name
-            self.exits[name] = exit_step
-            raised = [self.block.outcomes["done"], self.block.outcomes.get(name, "")]
-            self._body(exit_step, "P1", [f"{v} := TRUE;" for v in raised if v])
-            execute = self.block.inputs[0].name
-            self._go(exit_step, self.idle.name, f"NOT {execute}")
-        return self.exits[name]
+        Statements run in a step of their own between source and target, so that they
+        finish before the target's entry and so that a postcondition reads their effect."""
+        taken: list[str] = []
+        covered: list[set[str]] = []
+        for branch in branches:
+            needs = {c for c in branch.condition if c and c != "TRUE"}
+            if any(earlier <= needs for earlier in covered):
+                continue  # an earlier branch always wins: this one never fires
+            covered.append(needs)
+            condition = _conjunction(branch.condition)
+            whole = _conjunction([condition, *(_negate(t) for t in taken)])
+            taken.append(condition)
+            if not (branch.statements or branch.postcondition or branch.target == source):
+                self._go(source, branch.target, whole)
+                continue
+            between = self._step(f"{source}_to_{branch.target}_do").name
+            self._body(between, "P1", branch.statements)
+            self._go(source, between, whole)
+            if branch.postcondition:
+                self._go(between, branch.target, branch.postcondition)
+                violated = [
+                    Branch(
+                        [_negate(branch.postcondition), *b.condition],
+                        b.statements,
+                        b.target,
+                    )
+                    for b in branch.violated
+                ]
+                self._branches(between, violated)
+            else:
+                self._go(between, branch.target, "")
+
+    def _exit(self, outcome: str) -> str:
+        """The step that raises ``done`` and ``outcome`` until ``execute`` falls."""
+        if outcome not in self.exits:
+            step = self._step(f"Exit_{outcome}").name
+            self.exits[outcome] = step
+            self.block.states[step] = ("", outcome)
+            raised = [self.block.outcomes["done"], self.block.outcomes.get(outcome, "")]
+            self._body(step, "P1", [f"{v} := TRUE;" for v in raised if v])
+            self._go(step, self.idle.name, f"NOT {self.execute}")
+        return self.exits[outcome]
+
+    def _statements(self, statements, scope: Scope | None = None) -> list[str]:
+        return [line for s in statements for line in self._statement(s, scope or self.scope)]
 
     def _statement(self, statement: ast.Statement, scope: Scope) -> list[str]:
         if isinstance(statement, ast.Assignment):
             return scope.assign(statement.target, statement.value)
         return [f"{scope.compile(statement.expression)};"]
-
-    def _entries(self) -> None:
-        execute = self.block.inputs[0].name
-        starts = {c.name: c for c in self.region.start_conditions}
-        for transition in self.region.transitions:
-            if transition.source in starts:
-                condition = [execute, self._guard(starts[transition.source].expression)]
-                condition.append(self._guard(transition.guard))
-                self._target(transition, self.idle.name, " AND ".join(c for c in condition if c))
-        for name, info in self.region.states.items():
-            if info.state.is_initial:
-                self._go(self.idle.name, self.steps[name].name, execute)
 
     def _guard(self, expression: ast.Expression | None, scope: Scope | None = None) -> str:
         if expression is None:
@@ -389,35 +521,166 @@ class ComponentBuilder:
         text = (scope or self.scope).compile(expression)
         return f"({text})" if isinstance(expression, ast.Binary) else text
 
-    # -- children --------------------------------------------------------------------------
+    # -- entering and leaving states -------------------------------------------------------
 
-    def _child(self, name: str, info: StateInfo) -> None:
-        step = self.steps[name].name
-        leaving = [t for t in self.region.transitions if t.source == name]
-        if info.imported is not None and is_action(info.imported):
-            outcomes, timeout = self._inline_action(step, info)
-        elif info.imported is not None:
-            outcomes, timeout = self._instance(step, info), None
-        else:
-            outcomes, timeout = {}, None
-        for transition in leaving:
-            if transition.stimulus == "timeout" and timeout:
-                finished = timeout
-            elif transition.stimulus:
-                finished = outcomes.get(transition.stimulus, transition.stimulus)
-            else:
-                finished = outcomes.get("", "TRUE")
+    def _region_statements(self, region: Region | None, kind: str) -> list[str]:
+        if region is None:
+            return []
+        return self._statements(s for a in region.actions if a.kind == kind for s in a.statements)
+
+    def _enter(self, node: Node) -> tuple[list[str], Node]:
+        """Entry statements from ``node`` down its initial states, and the leaf reached."""
+        lines = self._region_statements(node.info.region, "entry")
+        while node.children is not None:
+            initial = next((n for n in node.nested if n.info.state.is_initial), node.nested[0])
+            node = initial
+            lines += self._region_statements(node.info.region, "entry")
+        return lines, node
+
+    def _exits(self, chain: list[Node]) -> list[str]:
+        return [line for n in chain for line in self._region_statements(n.info.region, "exit")]
+
+    def _invariants(self, node: Node) -> list[str]:
+        """The invariants of one state (not of its enclosing states)."""
+        found = []
+        if node.info.state.invariant is not None:
+            found.append(self._guard(node.info.state.invariant))
+        if node.info.region is not None:
+            found += [self._guard(i.expression) for i in node.info.region.invariants]
+        return found
+
+    def _to(self, node: Node, statements: list[str], condition: list[str]) -> list[Branch]:
+        """Branches that enter ``node``: a resting leaf, or a final state completing its owner."""
+        entries, leaf = self._enter(node)
+        if leaf.info.state.is_final:
+            return self._complete(leaf.parent, leaf.name, statements + entries, condition)
+        return [Branch(condition, statements + entries, self.leaves[id(leaf)])]
+
+    def _complete(
+        self, owner: Node | None, outcome: str, statements: list[str], condition: list[str]
+    ) -> list[Branch]:
+        """``owner`` (None: the component) ends with ``outcome``; its parent reacts."""
+        if owner is None:
+            exits = self._region_statements(self.region, "exit")
+            return [Branch(condition, statements + exits, self._exit(outcome))]
+        statements = statements + self._exits([owner])
+        return self._react(owner, outcome, statements, condition)
+
+    def _react(
+        self, node: Node, outcome: str, statements: list[str], condition: list[str]
+    ) -> list[Branch]:
+        """``node`` has ended with ``outcome``: the first matching transition whose guard holds,
+        else ``error`` of the enclosing state (an unhandled outcome is an error)."""
+        declared = node.info.outcomes or ()
+        branches: list[Branch] = []
+        guards: list[str] = []
+        for transition in node.region.transitions:
+            if transition.source != node.name:
+                continue
+            if not (
+                transition.stimulus == outcome or (not transition.stimulus and outcome in declared)
+            ):
+                continue
             guard = self._guard(transition.guard)
-            self._target(transition, step, f"{finished} AND {guard}" if guard else finished)
-        if info.imported is not None:
-            self._go(step, self._state_or_exit("error"), outcomes[""])
-            if timeout and not any(t.stimulus == "timeout" for t in leaving):
-                self._go(step, self._state_or_exit("error"), timeout)
+            branches += self._fire(node.parent, transition, statements, [*condition, guard])
+            if not guard:
+                return branches
+            guards.append(guard)
+        otherwise = [*condition, *(_negate(g) for g in guards)]
+        return branches + self._complete(node.parent, "error", statements, otherwise)
 
-    def _instance(self, step: str, info: StateInfo) -> dict[str, str]:
+    def _fire(
+        self, owner: Node | None, transition: ast.Transition, statements: list[str], condition
+    ) -> list[Branch]:
+        """Take ``transition`` of the region of ``owner``: action, postcondition, target."""
+        lines = statements + self._statements(transition.action or ())
+        siblings = owner.nested if owner else self.nodes
+        target = next((n for n in siblings if n.name == transition.target), None)
+        if target is None:  # an outcome of the enclosing state
+            branches = self._complete(owner, transition.target, lines, condition)
+        else:
+            branches = self._to(target, lines, condition)
+        post = self._guard(transition.postcondition)
+        if post:
+            violated = self._complete(owner, "error", [], [])
+            for branch in branches:
+                branch.postcondition, branch.violated = post, violated
+        return branches
+
+    # -- the start ----------------------------------------------------------------------------
+
+    def _start(self) -> None:
+        """Idle waits for ``execute``; then the first start condition whose transition is
+        enabled, or the initial state; ``error`` when none holds."""
+        entry = self._region_statements(self.region, "entry")
+        starts = self.region.start_conditions
+        branches: list[Branch] = []
+        if starts:
+            for start in starts:
+                holds = self._guard(start.expression)
+                for transition in self.region.transitions:
+                    if transition.source == start.name:
+                        guard = self._guard(transition.guard)
+                        branches += self._fire(
+                            None, transition, entry, [self.execute, holds, guard]
+                        )
+            branches += [Branch([self.execute], [], self._exit("error"))]
+        else:
+            initial = next((n for n in self.nodes if n.info.state.is_initial), None)
+            if initial is None:
+                branches = [Branch([self.execute], [], self._exit("error"))]
+            else:
+                branches = self._to(initial, entry, [self.execute])
+        self._branches(self.idle.name, branches)
+
+    # -- leaves -------------------------------------------------------------------------------
+
+    def _leaf(self, node: Node) -> None:
+        """The ways out of a resting leaf: a broken invariant, the end of its command or
+        child, external events."""
+        step = self.leaves[id(node)]
+        branches: list[Branch] = []
+        chain = node.chain()
+        for depth, owner in enumerate(chain):
+            for invariant in self._invariants(owner):
+                exits = self._exits(chain[: depth + 1])
+                branches += self._react(owner, "error", exits, [_negate(invariant)])
+        imported = node.info.imported
+        if imported is not None and is_action(imported):
+            branches += self._inline_action(step, node)
+        elif imported is not None:
+            branches += self._instance(step, node)
+        branches += self._events(node, self.stops.get(id(node), []))
+        self._branches(step, branches)
+
+    def _events(self, node: Node, stop: list[str]) -> list[Branch]:
+        """Transitions on external events: the innermost state first, declaration order."""
+        branches = []
+        for owner in node.chain():
+            outcomes = {*(owner.info.outcomes or ()), *BUILTIN_OUTCOMES}  # never events
+            for transition in owner.region.transitions:
+                if transition.source != owner.name or not transition.stimulus:
+                    continue
+                if transition.stimulus in outcomes:
+                    continue
+                event = self.events.get(transition.stimulus)
+                if event is None:
+                    event = self.events[transition.stimulus] = self.names.claim(transition.stimulus)
+                guard = self._guard(transition.guard)
+                chain = node.chain()[: node.chain().index(owner) + 1]
+                exits = stop + self._exits(chain)
+                branches += self._fire(owner.parent, transition, exits, [event, guard])
+        return branches
+
+    # -- children: device commands and function-block instances -------------------------------
+
+    def _instance(self, step: str, node: Node) -> list[Branch]:
+        """A skill or task child: an instance started P1, run N, reset P0."""
+        info = node.info
         child = self.unit.blocks[info.imported.qualified_name]
         instance = self.names.claim(f"{step}_fb")
         self.block.locals.append(Variable(instance, child.name))
+        self.block.instances[instance] = "/".join(node.path)
         bound = [
             f"{child.parameters[a.name]} := {self.scope.compile(a.value)}"
             for a in info.state.arguments
@@ -428,11 +691,17 @@ class ComponentBuilder:
         self._body(step, "P1", [f"{instance}({', '.join(['execute := TRUE', *bound])});"])
         self._body(step, "N", [f"{instance}({', '.join(kept)});"])
         self._body(step, "P0", [f"{instance}({', '.join(['execute := FALSE', *kept])});"])
-        outcomes = {o: f"{instance}.{v}" for o, v in child.outcomes.items()}
-        outcomes[""] = outcomes["done"]
-        return outcomes
+        branches = []
+        for outcome in ("error", *info.imported.region.outcomes):
+            flag = f"{instance}.{child.outcomes[outcome]}"
+            branches += self._react(node, outcome, [], [flag])
+        return branches
 
-    def _inline_action(self, step: str, info: StateInfo) -> tuple[dict[str, str], str]:
+    def _inline_action(self, step: str, node: Node) -> list[Branch]:
+        """An elemental action inlined: P1 starts the device command; each outcome (the
+        device's error, an end condition, the time budget) goes to a settle step that stops
+        the command, stores its result on a real outcome and runs the exit statements (μ)."""
+        info = node.info
         action = info.imported
         region = action.region
         arguments = {a.name: a.value for a in info.state.arguments}
@@ -444,9 +713,8 @@ class ComponentBuilder:
             if isinstance(declared, ObjectT):
                 substitutes[parameter.name] = self.scope.compile(value)
                 continue
-            variable = Variable(
-                self.names.claim(f"{step}_{parameter.name}"), self.unit.st_type(declared)
-            )
+            name = self.names.claim(f"{step}_{parameter.name}")
+            variable = Variable(name, self.unit.st_type(declared))
             substitutes[parameter.name] = variable.name
             self.block.locals.append(variable)
             initial = literal(parameter.default) if parameter.default else None
@@ -454,26 +722,35 @@ class ComponentBuilder:
             if value is not None and (parameter.name in arguments or not initial):
                 assignments += self.scope.assign(ast.Name(variable.name), value)
         scope = self._scope(region, substitutes)
-        start, stop, device = self._command(region, scope)
+        start, stop, store, device, instance = self._command(region, scope)
+        self.stops[id(node)] = stop
         self._body(step, "P1", assignments + start)
-        exits = [s for a in region.actions if a.kind == "exit" for s in a.statements]
-        self._body(step, "P0", stop + [x for s in exits for x in self._statement(s, scope)])
-        conditions = [
-            (c.name, self._guard(c.expression, scope) or "TRUE") for c in region.end_conditions
+        exits = self._statements(
+            (s for a in region.actions if a.kind == "exit" for s in a.statements), scope
+        )
+        members = self.unit.device_block(device).members
+        # the device's outputs speak of this command only once it has seen it: busy
+        acknowledged = f"{instance}.{members['busy']}"
+        ends = [
+            (c.name, [acknowledged, self._guard(c.expression, scope)])
+            for c in region.end_conditions
         ]
-        outcomes: dict[str, str] = {}
-        for index, (outcome, condition) in enumerate(conditions):
-            earlier = [
-                f"NOT {c}" if c.startswith("(") else f"NOT ({c})" for _, c in conditions[:index]
-            ]
-            outcomes[outcome] = " AND ".join([condition, *earlier])
-        outcomes[""] = " OR ".join(c for _, c in conditions) or "TRUE"
-        if len(conditions) > 1:
-            outcomes[""] = f"({outcomes['']})"
-        return outcomes, f"{step}.T >= {time_literal(self._timeout(action, device))}"
+        ends.insert(0, ("error", [acknowledged, f"{instance}.{members['error']}"]))
+        budget = time_literal(self._timeout(action, device.device))
+        ends.append(("timeout", [f"{step}.T >= {budget}"]))
+        branches = []
+        for outcome, condition in ends:
+            settle = self._step(f"{step}_{outcome}").name
+            self.block.states[settle] = ("/".join(node.path), outcome)
+            real = outcome not in ("error", "timeout")
+            self._body(settle, "P1", stop + (store if real else []) + exits)
+            self._branches(settle, self._react(node, outcome, [], []))
+            branches.append(Branch(condition, [], settle))
+        return branches
 
-    def _command(self, region: Region, scope: Scope) -> tuple[list[str], list[str], ast.Device]:
-        """P1 lines that start the device command of ``do`` and P0 lines that stop it."""
+    def _command(self, region: Region, scope: Scope):
+        """P1 lines that start the device command of ``do``, lines that stop it, lines that
+        store its result, the device type and the device instance."""
         do = next(a for a in region.actions if a.kind == "do")
         statement = do.statements[0]
         call = statement.value if isinstance(statement, ast.Assignment) else statement.expression
@@ -491,15 +768,20 @@ class ComponentBuilder:
             name = argument.name or order[position]
             bound.append(f"{parameters[name]} := {scope.compile(argument.value)}")
         instance = scope.compile(call.function.target)
-        stop = []
+        store = []
         if isinstance(statement, ast.Assignment) and result:
-            stop.append(f"{scope.compile(statement.target)} := {instance}.{result};")
-        stop.append(f"{instance}({flag} := FALSE);")
-        return [f"{instance}({', '.join(bound)});"], stop, device.device
+            store.append(f"{scope.compile(statement.target)} := {instance}.{result};")
+        stop = [f"{instance}({flag} := FALSE);"]
+        return [f"{instance}({', '.join(bound)});"], stop, store, device, instance
 
     def _timeout(self, action: Component, device: ast.Device) -> float:
-        """The action's ``timeout`` stereotype, else its device's, else 30 s."""
-        found = ast.stereotype(action.statechart.stereotypes, "timeout")
+        """The ``timeout`` stereotype of the action or of the one it extends, else its
+        device's, else 30 s."""
+        found = None
+        extended: Component | None = action
+        while found is None and extended is not None:
+            found = ast.stereotype(extended.statechart.stereotypes, "timeout")
+            extended = extended.base
         found = found or ast.stereotype(device.stereotypes, "timeout")
         if found is None or not found.value:
             return DEFAULT_TIMEOUT
@@ -510,3 +792,41 @@ class ComponentBuilder:
             raise GenerationError(
                 f"{found.position}: timeout '{found.value}' is not a time"
             ) from None
+
+
+def _group(condition: str) -> str:
+    """``condition`` safe to negate or combine."""
+    if (
+        not condition
+        or condition.isidentifier()
+        or (condition.startswith("(") and condition.endswith(")") and _balanced(condition[1:-1]))
+    ):
+        return condition
+    return f"({condition})"
+
+
+def _negate(condition: str) -> str:
+    """``NOT condition``, without a double negation."""
+    if condition.startswith("NOT "):
+        rest = condition[4:]
+        if _group(rest) == rest:
+            return rest
+    return f"NOT {_group(condition)}"
+
+
+def _balanced(text: str) -> bool:
+    depth = 0
+    for character in text:
+        depth += {"(": 1, ")": -1}.get(character, 0)
+        if depth < 0:
+            return False
+    return depth == 0
+
+
+def _conjunction(conditions: list[str]) -> str:
+    parts = [c for c in conditions if c and c != "TRUE"]
+    if not parts:
+        return "TRUE"
+    if len(parts) == 1:
+        return parts[0]
+    return " AND ".join(_group(p) for p in parts)

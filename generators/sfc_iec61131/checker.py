@@ -5,11 +5,16 @@ and SFC elements of every POU, and reports each rule it finds broken:
 
 ``initial-step``   exactly one INITIAL_STEP per network
 ``unique-name``    names of a POU (variables, steps, actions, transitions) differ ignoring case
+``type-name``      no name of a POU is spelled like a type or POU (MatIEC reads it as that type)
+``macro-name``     no step or action is spelled like a member its POU reads: MatIEC's C makes
+                   every step and action a macro of its block, which rewrites ``x.member``
 ``reserved-name``  no declared name is an IEC keyword or standard function/function block
 ``undefined-step`` every FROM/TO step exists; ``undefined-action`` every action used exists
 ``priority``       every branch of a selective divergence has a distinct PRIORITY
 ``timed-qualifier`` L, D, SD, DS and SL carry a time
 ``empty-action``   no action without statements
+``empty-body``     no FUNCTION or FUNCTION_BLOCK without statements (MatIEC loops on one)
+``string-literal`` string literals hold printable ASCII only; anything else is a ``$`` escape
 ``simultaneous``   simultaneous divergences and convergences balance (same branch counts)
 """
 
@@ -18,6 +23,7 @@ from __future__ import annotations
 import re
 from collections import Counter
 from dataclasses import dataclass, field
+from itertools import pairwise
 
 from lightrocks.generators.sfc_iec61131.reserved import is_reserved
 
@@ -56,11 +62,14 @@ class Token:
 
 @dataclass
 class Pou:
+    kind: str
     name: Token
     names: list[Token] = field(default_factory=list)
     steps: dict[str, Token] = field(default_factory=dict)
     initial: list[Token] = field(default_factory=list)
     actions: dict[str, Token] = field(default_factory=dict)
+    members: dict[str, Token] = field(default_factory=dict)
+    statements: int = 0  # statements of the body outside SFC elements
     uses: list[tuple[Token, Token | None, bool]] = field(default_factory=list)
     transitions: list[tuple[Token, list[Token], list[Token], Token | None]] = field(
         default_factory=list
@@ -116,7 +125,7 @@ def parse(text: str) -> tuple[list[Pou], list[Token]]:
         if word == "TYPE":
             types += _type_names(reader.until("END_TYPE"))
         elif word in POUS:
-            pous.append(_pou(reader, POUS[word]))
+            pous.append(_pou(reader, word))
     return pous, types
 
 
@@ -137,17 +146,19 @@ def _type_names(body: list[Token]) -> list[Token]:
     return names
 
 
-def _pou(reader: Reader, end: str) -> Pou:
-    pou = Pou(reader.next())
+def _pou(reader: Reader, kind: str) -> Pou:
+    end = POUS[kind]
+    pou = Pou(kind, reader.next())
+    start = reader.at
     while reader.peek().text and reader.peek().upper != end:
         word = reader.next().upper
         if word in VAR_SECTIONS:
             declaration = reader.until("END_VAR")
-            start = True
+            first = True
             for token in declaration:
-                if start and re.fullmatch(r"[A-Za-z_]\w*", token.text):
+                if first and re.fullmatch(r"[A-Za-z_]\w*", token.text):
                     pou.names.append(token)
-                start = token.text in (";", ",")
+                first = token.text in (";", ",")
         elif word in ("STEP", "INITIAL_STEP"):
             name = reader.next()
             pou.steps[name.upper] = name
@@ -165,6 +176,11 @@ def _pou(reader: Reader, end: str) -> Pou:
             body = [t for t in reader.until("END_ACTION")[1:] if t.text != ";"]
             if not body:
                 pou.uses.append((name, None, False))  # recorded as an empty body
+        elif word == ";":
+            pou.statements += 1
+    for before, token in pairwise(reader.tokens[start : reader.at]):
+        if before.text == "." and re.fullmatch(r"[A-Za-z_]\w*", token.text):
+            pou.members.setdefault(token.upper, token)
     reader.next()
     return pou
 
@@ -205,9 +221,45 @@ def check_sfc(text: str) -> list[Problem]:
             problems.append(
                 Problem(declared.line, "reserved-name", f"'{declared.text}' is reserved")
             )
+    declared = {t.upper: t for t in [*types, *(p.name for p in pous)]}
     for pou in pous:
         problems += _check_pou(pou)
+        problems += _check_spellings(pou, declared)
+        if not pou.statements and not pou.steps and pou.kind != "PROGRAM":
+            problems.append(Problem(pou.name.line, "empty-body", f"{pou.name.text} has no body"))
+    for token in tokenize(text):
+        if token.text.startswith("'") and not re.fullmatch(r"'[ -~]*'", token.text):
+            problems.append(
+                Problem(token.line, "string-literal", "a string holds a character to escape")
+            )
     return sorted(problems, key=lambda p: (p.line, p.rule))
+
+
+def _check_spellings(pou: Pou, declared: dict[str, Token]) -> list[Problem]:
+    """Names that MatIEC would read as a type, or whose step macro rewrites a member."""
+    problems = []
+    for name in pou.names:
+        if name.upper in declared:
+            what = declared[name.upper]
+            problems.append(
+                Problem(
+                    name.line,
+                    "type-name",
+                    f"'{name.text}' is spelled like the type '{what.text}' of line {what.line}",
+                )
+            )
+    for name in [*pou.steps.values(), *pou.actions.values()]:
+        if name.upper in pou.members:
+            member = pou.members[name.upper]
+            problems.append(
+                Problem(
+                    name.line,
+                    "macro-name",
+                    f"step or action '{name.text}' is spelled like the member "
+                    f"'.{member.text}' of line {member.line}",
+                )
+            )
+    return problems
 
 
 def _check_pou(pou: Pou) -> list[Problem]:

@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from lightrocks.generators.sfc_iec61131.names import Namer
 from lightrocks.languages.domain.types import FRAME, DeviceT, Type
 from lightrocks.metamodel import ast
 
@@ -21,9 +20,21 @@ FUNCTIONS = {
 }
 
 
-def field_name(name: str) -> str:
-    """The ST name of a structure field or object attribute (same rule everywhere)."""
-    return Namer().claim(name)
+ESCAPES = {"$": "$$", "'": "$'", "\n": "$N", "\r": "$R", "\t": "$T", "\f": "$P"}
+
+
+def string_literal(value: str) -> str:
+    """A single-byte IEC 61131-3 STRING: ``$`` escapes, ``$hh`` for any other character
+    outside printable ASCII (as UTF-8 bytes)."""
+    parts = []
+    for character in value:
+        if character in ESCAPES:
+            parts.append(ESCAPES[character])
+        elif " " <= character <= "~":
+            parts.append(character)
+        else:
+            parts.append("".join(f"${byte:02X}" for byte in character.encode("utf-8")))
+    return "'" + "".join(parts) + "'"
 
 
 def real(value: float) -> str:
@@ -54,7 +65,7 @@ def literal(expression: ast.Expression) -> str | None:
         case ast.BooleanLiteral(value=value):
             return "TRUE" if value else "FALSE"
         case ast.StringLiteral(value=value):
-            return "'" + value.replace("$", "$$").replace("'", "$'") + "'"
+            return string_literal(value)
         case ast.Unary(operator="-", operand=operand):
             inner = literal(operand)
             return None if inner is None else (inner[1:] if inner[0] == "-" else f"-{inner}")
@@ -71,6 +82,7 @@ class Scope:
     names: dict[str, str]
     infer: Callable[[ast.Expression], Type]
     sensor: Callable[[DeviceT, str], str]
+    field: Callable[[str], str]
 
     def compile(self, expression: ast.Expression) -> str:
         constant = literal(expression)
@@ -82,7 +94,7 @@ class Scope:
             case ast.Member(target=target, name=name):
                 owner = self.infer(target)
                 member = self.sensor(owner, name) if isinstance(owner, DeviceT) else None
-                return f"{self.compile(target)}.{member or field_name(name)}"
+                return f"{self.compile(target)}.{member or self.field(name)}"
             case ast.Index(target=target, index=index):
                 return f"{self.compile(target)}[{self.compile(index)}]"
             case ast.Call(function=ast.Name(name=function), arguments=arguments):

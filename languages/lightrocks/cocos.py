@@ -59,8 +59,13 @@ def unique_names(context: object) -> Iterator[Finding]:
     for _, region in _own_regions(analysis(context)):
         yield from _duplicates(_region_elements(region, ast.Parameter))
         yield from _duplicates(
-            _region_elements(region, ast.Condition) + _region_elements(region, ast.State)
+            _region_elements(region, ast.Condition)
+            + _region_elements(region, ast.State)
+            + _region_elements(region, ast.Pseudostate)
         )
+        if region.parent is None:
+            blocks = _region_elements(region, ast.EventBlock)
+            yield from _duplicates([e for block in blocks for e in block.events])
 
 
 def _region_elements(region: Region, kind: type) -> list:
@@ -125,14 +130,14 @@ def name_matches_file(context: object) -> Iterator[Finding]:
 @coco("LR0110", Severity.ERROR, "transition sources and targets resolve")
 def transition_ends_resolve(context: object) -> Iterator[Finding]:
     for _, region in _own_regions(analysis(context)):
-        names = [*region.states, *region.conditions]
+        names = [*region.states, *region.conditions, *region.pseudostates]
         for transition in region.transitions:
             ends = (
                 (transition.source, transition.source_position),
                 (transition.target, transition.target_position),
             )
             for name, position in ends:
-                if name not in region.states and name not in region.conditions:
+                if name not in names:
                     yield (
                         position,
                         f"unknown state or condition '{name}'",
@@ -142,10 +147,17 @@ def transition_ends_resolve(context: object) -> Iterator[Finding]:
 
 @coco("LR0111", Severity.WARNING, "stimuli leaving a child name one of its outcomes")
 def stimulus_is_outcome(context: object) -> Iterator[Finding]:
-    for _, region in _own_regions(analysis(context)):
+    for component, region in _own_regions(analysis(context)):
+        if component.layer is None:
+            continue  # a plain chart leaves composites by events as a matter of course
         for transition in region.transitions:
             source = region.states.get(transition.source)
-            if source is None or source.outcomes is None or not transition.stimulus:
+            if (
+                source is None
+                or source.outcomes is None
+                or not transition.stimulus
+                or transition.delay is not None
+            ):
                 continue
             outcomes = (*source.outcomes, *BUILTIN_OUTCOMES)
             if transition.stimulus not in outcomes:
@@ -296,8 +308,11 @@ def no_transition_from_end(context: object) -> Iterator[Finding]:
         for transition in region.transitions:
             condition = region.conditions.get(transition.source)
             state = region.states.get(transition.source)
-            if (condition is not None and condition.kind == "end") or (
-                state is not None and state.state.is_final
+            pseudostate = region.pseudostates.get(transition.source)
+            if (
+                (condition is not None and condition.kind == "end")
+                or (state is not None and state.state.is_final)
+                or (pseudostate is not None and pseudostate.kind != "choice")
             ):
                 yield (
                     transition.source_position,
@@ -367,16 +382,117 @@ def deterministic(context: object) -> Iterator[Finding]:
             if transition.guard is not None:
                 continue
             key = (transition.source, transition.stimulus)
-            earlier = seen.get(key) or seen.get((transition.source, ""))
+            outcome = _is_outcome(region, transition)
+            earlier = seen.get(key) or (seen.get((transition.source, "")) if outcome else None)
             if earlier is not None:
+                kind = "outcome" if outcome else "event" if transition.stimulus else "completion"
                 yield (
                     transition.position,
                     f"never fires: the transition at {earlier.position} takes the same "
-                    f"{'outcome' if transition.stimulus else 'completion'} first",
+                    f"{kind} first",
                     "",
                 )
             else:
                 seen[key] = transition
+
+
+def _is_outcome(region: Region, transition: ast.Transition) -> bool:
+    """The stimulus names a declared outcome of the source; otherwise it is an event."""
+    source = region.states.get(transition.source)
+    outcomes = source.outcomes if source is not None else None
+    return bool(outcomes) and transition.stimulus in outcomes
+
+
+@coco("LR0214", Severity.ERROR, "a transition without stimulus leaves a state that completes")
+def completion_needs_outcome(context: object) -> Iterator[Finding]:
+    for _, region in _own_regions(analysis(context)):
+        for transition in region.transitions:
+            source = region.states.get(transition.source)
+            if (
+                transition.stimulus
+                or source is None
+                or source.state.is_final
+                or source.outcomes is not None
+                or any(s.name == "import" for s in source.state.stereotypes)
+            ):
+                continue
+            yield (
+                transition.position,
+                f"never fires: '{source.name}' has no final state or end condition, "
+                "so it never completes",
+                "name the event that leaves it",
+            )
+
+
+@coco("LR0215", Severity.ERROR, "a history target names a history pseudostate of its state")
+def history_targets(context: object) -> Iterator[Finding]:
+    for _, region in _own_regions(analysis(context)):
+        for transition in region.transitions:
+            if not transition.target_history:
+                continue
+            target = region.states.get(transition.target)
+            inner = target.region if target is not None else None
+            histories = [
+                name
+                for name, p in (inner.pseudostates.items() if inner is not None else ())
+                if p.kind != "choice"
+            ]
+            if transition.target_history not in histories:
+                yield (
+                    transition.target_position,
+                    f"'{transition.target_history}' is no history pseudostate of "
+                    f"'{transition.target}'",
+                    did_you_mean(transition.target_history, histories),
+                )
+
+
+@coco("LR0216", Severity.ERROR, "a choice is left by transitions without stimulus")
+def choice_branches(context: object) -> Iterator[Finding]:
+    for _, region in _own_regions(analysis(context)):
+        for name, pseudostate in region.pseudostates.items():
+            if pseudostate.kind != "choice":
+                continue
+            leaving = [t for t in region.transitions if t.source == name]
+            if not leaving:
+                yield (pseudostate.position, f"choice '{name}' has no branch", "")
+            for transition in leaving:
+                if transition.stimulus:
+                    yield (
+                        transition.stimulus_position,
+                        f"a branch of choice '{name}' has no stimulus: guards decide at once",
+                        "",
+                    )
+
+
+@coco("LR0217", Severity.ERROR, "a statechart that declares events uses declared events only")
+def declared_events(context: object) -> Iterator[Finding]:
+    for component, region in _own_regions(analysis(context)):
+        declared = component.region.events
+        if declared is None:
+            continue
+        stimuli = [
+            (t.stimulus, t.stimulus_position)
+            for t in region.transitions
+            if t.stimulus
+            and t.delay is None
+            and not _is_outcome(region, t)
+            and not _is_builtin(region, t)
+        ]
+        stimuli += [(t.stimulus, t.stimulus_position) for t in region.internal if t.delay is None]
+        for name, position in stimuli:
+            if name not in declared:
+                yield (
+                    position,
+                    f"'{name}' is no declared event ({', '.join(declared) or 'none declared'})",
+                    did_you_mean(name, list(declared)),
+                )
+
+
+def _is_builtin(region: Region, transition: ast.Transition) -> bool:
+    source = region.states.get(transition.source)
+    return transition.stimulus in BUILTIN_OUTCOMES and (
+        source is None or source.outcomes is not None
+    )
 
 
 @coco("LR0212", Severity.WARNING, "stereotypes are known")
@@ -421,6 +537,10 @@ COCOS = (
     deterministic,
     known_stereotypes,
     no_transition_into_start,
+    completion_needs_outcome,
+    history_targets,
+    choice_branches,
+    declared_events,
     call_signature,
     type_mismatch,
     not_boolean,

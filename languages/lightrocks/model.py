@@ -49,6 +49,9 @@ class Region:
     conditions: dict[str, ast.Condition] = field(default_factory=dict)
     states: dict[str, StateInfo] = field(default_factory=dict)
     transitions: list[ast.Transition] = field(default_factory=list)
+    pseudostates: dict[str, ast.Pseudostate] = field(default_factory=dict)
+    internal: list[ast.InternalTransition] = field(default_factory=list)
+    events: dict[str, ast.Event] | None = None  # declared events (top region only)
     actions: list[ast.Action] = field(default_factory=list)
     invariants: list[ast.Invariant] = field(default_factory=list)
     parent: Region | None = None
@@ -210,7 +213,11 @@ class ModelSet:
             region.conditions.update(base.conditions)
             region.states.update(base.states)
             region.transitions.extend(base.transitions)
+            region.pseudostates.update(base.pseudostates)
+            region.internal.extend(base.internal)
             region.invariants.extend(base.invariants)
+            if base.events is not None:
+                region.events = dict(base.events)
         own_actions: list[ast.Action] = []
         for element in _flatten(elements):
             if isinstance(element, ast.Parameter):
@@ -225,6 +232,13 @@ class ModelSet:
                     region.transitions.append(element)
                 else:  # same source and stimulus as an inherited one: it overrides it
                     region.transitions[index] = element
+            elif isinstance(element, ast.Pseudostate):
+                region.pseudostates[element.name] = element
+            elif isinstance(element, ast.InternalTransition):
+                region.internal.append(element)
+            elif isinstance(element, ast.EventBlock):
+                region.events = region.events or {}
+                region.events.update((e.name, e) for e in element.events)
             elif isinstance(element, ast.Action):
                 own_actions.append(element)
             elif isinstance(element, ast.Invariant):

@@ -57,7 +57,7 @@ def _body(writer: Writer, head: Sequence[str], node: ast.Statechart | ast.State)
     writer.close(node.position)
 
 
-def _element(writer: Writer, node: ast.Element | ast.ParameterBlock) -> None:
+def _element(writer: Writer, node: ast.Element | ast.ParameterBlock | ast.EventBlock) -> None:
     where = node.position
     match node:
         case ast.ParameterBlock(parameters=parameters):
@@ -86,6 +86,26 @@ def _element(writer: Writer, node: ast.Element | ast.ParameterBlock) -> None:
             writer.line([f"invariant [{expression(invariant)}];"], where.line)
         case ast.Transition():
             _transition(writer, node)
+        case ast.InternalTransition():
+            writer.item(where, "transition")
+            text = f"internal{_bracketed(node.guard)} {_stimulus(node)}"
+            if node.action is None:
+                writer.line([text + ";"], where.line)
+            else:
+                block(writer, f"{text} /", node.action, where, ";")
+        case ast.Pseudostate(kind=kind, name=name):
+            writer.item(where, "state")
+            writer.line([f"{kind} {name};"], where.line)
+        case ast.EventBlock(events=events):
+            writer.item(where, "events", spaced=True)
+            if not events and not writer.comments_within(where):
+                writer.line(["events { }"], where.line)
+                return
+            writer.open(["events {"], where.line)
+            for event in events:
+                writer.item(event.position, "event")
+                writer.line([f"{event.name};"], event.position.line)
+            writer.close(where)
 
 
 def _state(writer: Writer, node: ast.State) -> None:
@@ -104,15 +124,20 @@ def _state(writer: Writer, node: ast.State) -> None:
 
 def _transition(writer: Writer, node: ast.Transition) -> None:
     writer.item(node.position, "transition")
-    text = f"{node.source} -> {node.target}{_bracketed(node.guard)}"
+    target = f"{node.target}.{node.target_history}" if node.target_history else node.target
+    text = f"{node.source} -> {target}{_bracketed(node.guard)}"
     if node.stimulus:
-        args = node.stimulus_arguments
-        text += f" {node.stimulus}" + (f"({', '.join(map(expression, args))})" if args else "")
+        text += f" {_stimulus(node)}"
     tail = _bracketed(node.postcondition) + ";"
     if node.action is None:
         writer.line([text + tail], node.position.line)
     else:
         block(writer, f"{text} /", node.action, node.position, tail)
+
+
+def _stimulus(node: ast.Transition | ast.InternalTransition) -> str:
+    args = node.stimulus_arguments
+    return node.stimulus + (f"({', '.join(map(expression, args))})" if args else "")
 
 
 def _bracketed(node: ast.Expression | None) -> str:

@@ -41,6 +41,7 @@ from lightrocks.metamodel.units import ONE, UnitError, lookup
 from lightrocks.workbench.diagnostics import did_you_mean
 from lightrocks.workbench.workspace import Loaded
 
+DURATION = QuantityT("Duration", lookup("s").dimension)
 Finding = tuple[ast.Position, str, str]
 
 
@@ -132,11 +133,13 @@ class Typing:
                     info.state.position,
                     f"state '{info.name}' takes no arguments: it does not <<import>> a statechart",
                 )
-        for transition in region.transitions:
+        for transition in [*region.transitions, *region.internal]:
             if transition.guard is not None:
                 self.boolean(transition.guard, env, "guard")
-            if transition.postcondition is not None:
+            if getattr(transition, "postcondition", None) is not None:
                 self.boolean(transition.postcondition, env, "postcondition")
+            if transition.stimulus == "after":
+                self.time_event(transition, env)
             for statement in transition.action or ():
                 self.statement(statement, env)
         for action in region.actions:
@@ -145,6 +148,17 @@ class Typing:
                     self.do_statement(statement, env)
                 else:
                     self.statement(statement, env)
+
+    def time_event(
+        self, transition: ast.Transition | ast.InternalTransition, env: dict[str, Type]
+    ) -> None:
+        """``after(d)`` waits one duration, a constant or an expression over parameters."""
+        if len(transition.stimulus_arguments) != 1:
+            self.report(
+                "LR0301", transition.stimulus_position, "after(…) takes exactly one duration"
+            )
+            return
+        self.expect(transition.stimulus_arguments[0], DURATION, env, "delay of after(…)")
 
     def _unresolved_type(self, loaded: Loaded, name: str, position: ast.Position) -> None:
         candidates = [*BUILTIN_TYPES, *self.models.workspace.scope(loaded)]

@@ -207,3 +207,38 @@ def test_screw_task_in_mujoco_reports_the_screw_depth(capsys: pytest.CaptureFixt
     assert depth is not None, out
     assert float(depth.group(1)) == pytest.approx(12.0, abs=0.6)
     assert re.search(r"screw bottomed\W+yes", out)
+
+
+def test_plain_chart_without_final_state_resting_after_its_events_succeeds(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "Door.lr").write_text(
+        "statechart Door {\n  initial state Shut;\n  state Open;\n"
+        "  Shut -> Open open;\n  Open -> Shut close;\n}\n"
+    )
+    status, out, _ = run(capsys, str(tmp_path / "Door.lr"), "--events", "open")
+    assert status == 0
+    assert "active: Door / Open" in out
+
+
+DELAYED = (
+    "statechart Lamp {\n  initial state Off;\n  state On;\n"
+    "  Off -> On on;\n  On -> Off after(1 s);\n}\n"
+)
+
+
+def test_events_advance_the_virtual_clock_and_unknown_events_are_usage_errors(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    model = tmp_path / "Lamp.lr"
+    model.write_text(DELAYED)
+    status, out, _ = run(capsys, str(model), "--events", "on,+500ms")
+    assert status == 0 and "active: Lamp / On" in out
+    status, out, _ = run(capsys, str(model), "--events", "on,+1s")
+    assert status == 0 and "active: Lamp / Off" in out
+    trace = tmp_path / "run.jsonl"
+    status, _, err = run(capsys, str(model), "--events", "on,off", "--trace", str(trace))
+    assert status == 2 and "unknown event 'off'; Lamp accepts: on" in err
+    assert not trace.exists()
+    status, _, err = run(capsys, str(model), "--events", "+2m")
+    assert status == 2 and "'+2m' is not a time to wait" in err

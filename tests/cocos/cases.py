@@ -392,6 +392,50 @@ CASES: list[Case] = [
         bad={"skills/Pick.lr": skill(PICK_BODY + "  Reach -> @@go error;\n")},
         message="'go' is a start condition: it can only be a source",
     ),
+    Case(
+        "LR0214",
+        ok={"misc/Lone.lr": LONE},
+        bad={"misc/Lone.lr": replace(LONE, "  A -> B tick;", "  A -> B tick;\n  @@A -> B;")},
+        message="never fires: 'A' has no final state or end condition",
+        hint="name the event that leaves it",
+    ),
+    Case(
+        "LR0215",
+        ok={"misc/Lone.lr": LONE},
+        bad={
+            "misc/Lone.lr": replace(
+                LONE,
+                "  final state B;\n  A -> B tick;",
+                "  state C { initial state D; history Back; }\n  final state B;\n"
+                "  A -> @@C.Bak tick;\n  C -> B stop;",
+            )
+        },
+        message="'Bak' is no history pseudostate of 'C'",
+        hint="did you mean 'Back'?",
+    ),
+    Case(
+        "LR0216",
+        ok={"misc/Lone.lr": LONE},
+        bad={
+            "misc/Lone.lr": replace(
+                LONE, "  A -> B tick;", "  choice C;\n  A -> C tick;\n  C -> B @@tock;"
+            )
+        },
+        message="a branch of choice 'C' has no stimulus",
+    ),
+    Case(
+        "LR0217",
+        ok={"misc/Lone.lr": LONE},
+        bad={
+            "misc/Lone.lr": replace(
+                LONE,
+                "  initial state A;",
+                "  events { tick; }\n  initial state A;\n  A -> A @@tock;",
+            )
+        },
+        message="'tock' is no declared event (tick)",
+        hint="did you mean 'tick'?",
+    ),
     # -- typing ------------------------------------------------------------------------------
     Case(
         "LR0301",

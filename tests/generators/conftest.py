@@ -24,9 +24,13 @@ SCREW_IN = EXAMPLES / "screwing" / "skills" / "ScrewIn.lr"
 
 
 def generate(
-    target: str, models: list[Path], options: dict[str, str] | None = None, templates=None
+    target: str,
+    models: list[Path],
+    options: dict[str, str] | None = None,
+    templates=None,
+    search: list[Path] | None = None,
 ) -> dict[str, str]:
-    context = check(models, [EXAMPLES])
+    context = check(models, search or [EXAMPLES])
     assert not context.diagnostics.has_errors, context.diagnostics.items
     request = GenerationRequest(context, [m.resolve() for m in models], options or {}, templates)
     return load_generator(target).generate(request)

@@ -7,7 +7,7 @@ import os
 import pytest
 from conftest import EXAMPLES, SCREW_IN, SCREW_TASK
 
-from lightrocks.workbench import generators
+from lightrocks.workbench import files
 from lightrocks.workbench.app.cli import main
 
 
@@ -87,7 +87,7 @@ def test_read_only_output_folder(tmp_path, capsys, monkeypatch) -> None:
         def refuse(*args, **kwargs):
             raise PermissionError(13, "Permission denied")
 
-        monkeypatch.setattr(generators.tempfile, "mkdtemp", refuse)
+        monkeypatch.setattr(files.tempfile, "mkdtemp", refuse)
     try:
         assert _generate(out) == 1
         assert "cannot write to" in capsys.readouterr().err

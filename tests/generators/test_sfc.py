@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import pytest
 from conftest import RAIL_TASK, SCREW_IN, SCREW_TASK, assert_golden, generate
+from hypothesis import given
+from hypothesis import strategies as st
 
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
+from lightrocks.generators.sfc_iec61131.expressions import string_literal
 from lightrocks.generators.sfc_iec61131.names import Namer, legal
 from lightrocks.workbench.generators import GenerationError
 
@@ -30,7 +33,8 @@ def test_complete_compilation_unit(units: dict[str, str]) -> None:
     text = units["ScrewTask.st"]
     for part in (
         "TYPE",
-        "Wrench : STRUCT",
+        "Force3 : STRUCT",
+        "wrench : Wrench_2;",  # a variable keeps its name; the type gives way
         "FUNCTION_BLOCK LWR",
         "FUNCTION_BLOCK ScrewIn",
         "FUNCTION_BLOCK ScrewTask",
@@ -87,3 +91,71 @@ def test_case_insensitive_clashes_get_suffixes() -> None:
     names = Namer()
     assert [names.claim(n) for n in ("turn", "Turn", "TURN")] == ["turn", "Turn_2", "TURN_3"]
     assert legal("a__b-") == "a_b"
+
+
+def test_an_extending_action_keeps_its_base_timeout(units: dict[str, str]) -> None:
+    # TurnBack <<extends>> TurnTool (10 s): not the device's 30 s
+    assert "Rewind.T >= T#10s" in units["ScrewTask.st"]
+
+
+@pytest.mark.parametrize(
+    ("value", "text"),
+    [
+        ("plain", "'plain'"),
+        ("it's $5", "'it$'s $$5'"),
+        ("two\nlines\ttab", "'two$Nlines$Ttab'"),
+        ("µm", "'$C2$B5m'"),
+    ],
+)
+def test_string_literals_use_iec_escapes(value: str, text: str) -> None:
+    assert string_literal(value) == text
+
+
+@given(
+    st.lists(
+        st.tuples(
+            st.sampled_from(["unit", "variable", "macro"]),
+            st.integers(0, 2),
+            st.sampled_from(["Open", "open", "Wrench", "wrench", "Idle", "done", "TON", "x"]),
+        ),
+        max_size=30,
+    )
+)
+def test_names_of_different_kinds_never_meet(claims: list[tuple[str, int, str]]) -> None:
+    unit = Namer()
+    scopes = [unit.scope() for _ in range(3)]
+    given: dict[str, list[tuple[int, str]]] = {"unit": [], "variable": [], "macro": []}
+    for kind, scope, wanted in claims:
+        if kind == "unit":
+            given[kind].append((-1, unit.claim(wanted).upper()))
+        elif kind == "variable":
+            given[kind].append((scope, scopes[scope].claim(wanted).upper()))
+        else:
+            given[kind].append((scope, scopes[scope].claim_macro(wanted).upper()))
+    for kind, names in given.items():
+        others = {n for k, found in given.items() if k != kind for _, n in found}
+        assert not others & {n for _, n in names}
+        for scope in range(-1, 3):
+            in_scope = [n for s, n in names if s == scope]
+            assert len(in_scope) == len(set(in_scope))
+
+
+@pytest.mark.parametrize(
+    ("body", "what"),
+    [
+        ("choice C; A -> C go; C -> B [n > 0]; C -> A;", "choice pseudostate 'C'"),
+        ("A -> B after(2 s);", "time event"),
+        ("A -> B go; B -> A back;", ""),
+    ],
+)
+def test_constructs_without_sfc_mapping_are_refused(tmp_path, body: str, what: str) -> None:
+    model = tmp_path / "Gate.lr"
+    model.write_text(
+        "statechart Gate {\n  parameters { Integer n = 0; }\n  initial state A;\n  state B;\n"
+        f"  {body}\n}}\n"
+    )
+    if not what:
+        assert "FUNCTION_BLOCK Gate" in generate("sfc", [model], search=[tmp_path])["Gate.st"]
+        return
+    with pytest.raises(GenerationError, match=f"Gate.lr:5:.*does not map a {what}"):
+        generate("sfc", [model], search=[tmp_path])

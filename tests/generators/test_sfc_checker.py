@@ -7,8 +7,11 @@ import pytest
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 
 GOOD = """
+TYPE
+  Wrench : STRUCT force : REAL; torque : REAL; END_STRUCT;
+END_TYPE
 FUNCTION_BLOCK Demo
-VAR_INPUT go : BOOL; END_VAR
+VAR_INPUT go : BOOL; load : Wrench; END_VAR
 VAR_OUTPUT finished : BOOL; END_VAR
 INITIAL_STEP Idle :
   Idle_entry(P1);
@@ -25,7 +28,8 @@ STEP Done :
 END_STEP
 TRANSITION start (PRIORITY := 1) FROM Idle TO Work := go; END_TRANSITION
 TRANSITION stay (PRIORITY := 2) FROM Idle TO Done := NOT go; END_TRANSITION
-TRANSITION split FROM Work TO (Grip, Lift) := Work.T >= T#1s; END_TRANSITION
+TRANSITION split FROM Work TO (Grip, Lift) := Work.T >= T#1s AND load.force > 1.0;
+END_TRANSITION
 TRANSITION join FROM (Grip, Lift) TO Done := TRUE; END_TRANSITION
 TRANSITION again FROM Done TO Idle := NOT go; END_TRANSITION
 ACTION Idle_entry : finished := FALSE; END_ACTION
@@ -44,6 +48,10 @@ BROKEN = {
     "timed-qualifier": ("Work_limit(L, T#5s);", "Work_limit(L);"),
     "empty-action": ("ACTION Work_limit : finished := TRUE;", "ACTION Work_limit :"),
     "simultaneous": ("FROM (Grip, Lift) TO Done", "FROM Grip TO Done"),
+    "type-name": ("load : Wrench;", "wrench : Wrench;"),
+    "macro-name": ("STEP Grip :", "STEP Force :"),
+    "empty-body": ("END_TYPE\n", "END_TYPE\nFUNCTION_BLOCK Nothing\nEND_FUNCTION_BLOCK\n"),
+    "string-literal": ("finished := FALSE; END_ACTION", "finished := 'a\nb' = 'c'; END_ACTION"),
 }
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
-from lightrocks.runtime import BindingError
+from lightrocks.runtime import BindingError, UnknownEvent
 
 
 def kinds(chart, *wanted: str) -> list[tuple[str, str]]:
@@ -183,7 +183,8 @@ def test_plain_statechart_with_events(build):
     assert chart.active_configuration == ("Counter", "Idle")
     assert chart.send("start")
     assert chart.active_configuration == ("Counter", "Busy", "One")
-    assert not chart.send("nothing")
+    with pytest.raises(UnknownEvent, match="unknown event 'nothing'; Counter accepts: start, step"):
+        chart.send("nothing")
     for _ in range(4):
         chart.send("step")
     assert chart.count == 2 and chart.active_configuration[-1] == "One"
@@ -221,3 +222,35 @@ def test_python_error_in_a_guard_becomes_error_not_a_crash(build):
     chart.send("go")
     assert chart.finished and chart.outcome == "error"
     assert "ZeroDivisionError in model code" in chart.fault.message
+
+
+OUTCOME_AS_EVENT = """package t;
+
+statechart Q {
+  initial state Idle;
+  state Job {
+    end condition out;
+    initial state Load;
+    final state Ok;
+    Load -> Ok load;
+    Load -> out bail;
+  }
+  state Other;
+
+  Idle -> Job go;
+  Job -> Idle Ok;
+  Job -> Other out;
+  Other -> Idle back;
+}
+"""
+
+
+def test_an_outcome_is_never_taken_as_an_external_event(build):
+    chart = build({"Q": OUTCOME_AS_EVENT}, "Q")().start()
+    chart.send("go")
+    for outcome in ("Ok", "out", "error"):
+        with pytest.raises(UnknownEvent):
+            chart.send(outcome)
+    assert chart.active_configuration == ("Q", "Job", "Load")
+    assert chart.send("load")
+    assert chart.active_configuration == ("Q", "Idle")

@@ -49,10 +49,36 @@ class UsageError(Exception):
 
 
 def existing_paths(paths: Sequence[str]) -> list[Path]:
+    """The given files and folders; anything else (a FIFO, a device) is never read."""
     missing = [p for p in paths if not Path(p).exists()]
     if missing:
         raise UsageError(f"no such file or folder: {', '.join(missing)}")
+    special = [p for p in paths if not (Path(p).is_file() or Path(p).is_dir())]
+    if special:
+        raise UsageError(f"not a regular file or folder: {', '.join(special)}")
     return [Path(p) for p in paths]
+
+
+def statechart_file(path: str) -> Path:
+    """The one ``.lr`` file ``run`` takes."""
+    [model] = existing_paths([path])
+    if model.is_dir():
+        raise UsageError(f"{path} is a folder: run takes one statechart file (.lr)")
+    if model.suffix != ".lr":
+        raise UsageError(f"{path} is not a statechart file (.lr): run takes one")
+    return model.resolve()
+
+
+def trace_file(path: str | None) -> Path | None:
+    """Where ``--trace`` writes: a new or regular file in an existing folder."""
+    if path is None:
+        return None
+    trace = Path(path)
+    if trace.exists() and not trace.is_file():
+        raise UsageError(f"--trace: {path} is not a regular file")
+    if not trace.parent.is_dir():
+        raise UsageError(f"--trace: no such folder: {trace.parent}")
+    return trace
 
 
 def _path_option(parser: argparse.ArgumentParser) -> None:
@@ -115,12 +141,12 @@ def cmd_fmt(args: argparse.Namespace) -> int:
     changed = [f for f, text in formatted.items() if text != original[f]]
     if args.check:
         for file in changed:
-            print(f"would reformat {file}")
+            print(f"would reformat {report.printable(str(file))}")
         print(f"{len(changed)} of {len(files)} file(s) would change")
         return EXIT_FINDINGS if changed else EXIT_OK
     for file in changed:
         write_atomic(file, formatted[file])
-        print(f"reformatted {file}")
+        print(f"reformatted {report.printable(str(file))}")
     print(f"{len(changed)} of {len(files)} file(s) reformatted")
     return EXIT_OK
 
@@ -157,9 +183,9 @@ def cmd_generate(args: argparse.Namespace) -> int:
     try:
         written = write_all(Path(args.output), generator.generate(request))
     except GenerationError as error:
-        print(f"lightrocks: error: {error}", file=sys.stderr)
+        print(f"lightrocks: error: {report.printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS
-    print(f"{len(written)} file(s) written to {args.output}")
+    print(f"{len(written)} file(s) written to {report.printable(args.output)}")
     return EXIT_OK
 
 
@@ -178,7 +204,11 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
         "--param", action="append", default=[], metavar="NAME=VALUE", help="parameter value"
     )
     parser.add_argument("--trace", help="write the trace (JSON lines) to this file")
-    parser.add_argument("--events", default="", help="comma-separated events to send in order")
+    parser.add_argument(
+        "--events",
+        default="",
+        help="comma-separated events to send in order; +500ms advances the virtual clock",
+    )
     parser.add_argument("--seed", type=int, default=0, help="the adapter's random seed")
     parser.add_argument(
         "--seeds", type=int, metavar="N", help="repeat with seeds SEED..SEED+N-1 and report"
@@ -209,11 +239,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.run import run_component, success_outcome
     from lightrocks.workbench.app.seeds import run_seeds
 
-    model = existing_paths([args.model])[0].resolve()
+    model = statechart_file(args.model)
     search_path = existing_paths(args.path)
-    trace = Path(args.trace) if args.trace else None
-    if trace is not None and not trace.parent.is_dir():
-        raise UsageError(f"--trace: no such folder: {trace.parent}")
+    trace = trace_file(args.trace)
     events = [e.strip() for e in args.events.split(",") if e.strip()]
     if args.seeds is not None and args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
@@ -257,7 +285,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
-        print(error)
+        print(error)  # the findings, already neutralised by report.text
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
@@ -317,7 +345,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return COMMANDS[args.command][1](args)
     except UsageError as error:
-        console.print(f"lightrocks: error: {error}")
+        console.print(f"lightrocks: error: {report.printable(str(error))}", markup=False)
         return EXIT_USAGE
     except KeyboardInterrupt:
         console.print("lightrocks: interrupted")
@@ -326,7 +354,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if os.environ.get("LIGHTROCKS_DEBUG"):
             raise
         console.print(
-            f"lightrocks: internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)"
+            f"lightrocks: internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)",
+            markup=False,
         )
         return EXIT_FINDINGS
 

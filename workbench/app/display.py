@@ -10,6 +10,7 @@ from typing import Any
 
 from lightrocks.workbench.app.run import RunResult
 from lightrocks.workbench.app.seeds import wilson
+from lightrocks.workbench.report import printable
 
 _SCALES = {
     "_depth": (1e3, "mm", 1),
@@ -79,7 +80,7 @@ def show(name: str, run: Callable[..., RunResult]) -> int:
     if result.active:
         print("active: " + " / ".join(result.active))
     if result.fault:
-        print(f"error: {result.fault}")
+        print(f"error: {printable(result.fault)}")
     return 0 if result.success else 1
 
 
@@ -126,7 +127,7 @@ def show_seeds(
     Console(highlight=False, markup=False).print(table)
     for result in results:
         if result.fault:
-            print(f"seed {result.seed}: error: {result.fault}")
+            print(f"seed {result.seed}: error: {printable(result.fault)}")
     count = sum(r.success for r in results)
     low, high = wilson(count, len(results))
     label = wanted or "finished without error"

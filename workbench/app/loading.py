@@ -1,16 +1,15 @@
 """Check → generate → cache → import: the generated class of a model's statechart.
 
-The cache folder is named by a hash of every loaded model's text, so an unchanged model is
-generated once. Generated modules are imported with importlib from that folder; model text
-itself is never executed.
+Generated packages live in the run cache (:mod:`workbench.app.cache`), so an unchanged model
+is generated once. Each entry is verified before it is imported with importlib, all its
+modules at once and without writing bytecode beside them; model text itself is never
+executed.
 """
 
 from __future__ import annotations
 
-import hashlib
 import importlib
 import importlib.util
-import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -19,40 +18,57 @@ from types import ModuleType
 from lightrocks.generators.python import GENERATOR
 from lightrocks.generators.python.generator import module_path
 from lightrocks.generators.python.names import identifier
+from lightrocks.metamodel import ast
 from lightrocks.workbench import report
-from lightrocks.workbench.app.errors import ModelError
+from lightrocks.workbench.app import cache
+from lightrocks.workbench.app.errors import ModelError, RunError
 from lightrocks.workbench.check import CheckContext, all_cocos, check
-from lightrocks.workbench.generators import GenerationRequest, write_all
+from lightrocks.workbench.generators import GenerationRequest
+
+cache_root = cache.cache_root
 
 
-def cache_root() -> Path:
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    return Path(xdg) / "lightrocks" if xdg else Path.cwd() / ".lightrocks-cache"
-
-
-def content_key(context: CheckContext) -> str:
-    digest = hashlib.sha256()
-    for loaded in sorted(context.workspace.loaded_units(), key=lambda u: str(u.path)):
-        digest.update(str(loaded.path).encode() + b"\0" + loaded.path.read_bytes() + b"\0")
-    return digest.hexdigest()[:16]
+def generator_inputs(context: CheckContext, files: list[Path]) -> list[tuple[str, bytes]]:
+    """Every loaded model (path and text) and the files generation was asked for."""
+    units = sorted(context.workspace.loaded_units(), key=lambda u: str(u.path))
+    inputs = [(str(unit.path), unit.path.read_bytes()) for unit in units]
+    return inputs + [(str(file), b"requested") for file in sorted(files)]
 
 
 def generated_package(context: CheckContext, files: list[Path], root: Path) -> ModuleType:
-    """Generate (once per content) and import the package of every loaded statechart."""
-    key = content_key(context)
-    folder = root / key
-    if not (folder / "__init__.py").exists():
-        folder.mkdir(parents=True, exist_ok=True)
-        write_all(folder, GENERATOR.generate(GenerationRequest(context, files)))
+    """Generate (once per input) and import the package of every loaded statechart."""
+    key = cache.cache_key(GENERATOR.name, generator_inputs(context, files))
     name = f"lightrocks_{key}"
     if name not in sys.modules:
-        spec = importlib.util.spec_from_file_location(
-            name, folder / "__init__.py", submodule_search_locations=[str(folder)]
+        folder = cache.entry(
+            root, key, lambda: GENERATOR.generate(GenerationRequest(context, files))
         )
-        module = importlib.util.module_from_spec(spec)
+        _import_all(name, folder)
+    return sys.modules[name]
+
+
+def _import_all(name: str, folder: Path) -> None:
+    """Import the package and every module in it now, while the entry is known good."""
+    spec = importlib.util.spec_from_file_location(
+        name, folder / "__init__.py", submodule_search_locations=[str(folder)]
+    )
+    module = importlib.util.module_from_spec(spec)
+    writes_bytecode, sys.dont_write_bytecode = sys.dont_write_bytecode, True
+    try:
         sys.modules[name] = module
         spec.loader.exec_module(module)
-    return sys.modules[name]
+        for path in sorted(folder.rglob("*.py")):
+            parts = path.relative_to(folder).with_suffix("").parts
+            if parts[-1] == "__init__":
+                parts = parts[:-1]
+            if parts:
+                importlib.import_module(".".join([name, *parts]))
+    except BaseException:
+        for loaded in [m for m in sys.modules if m == name or m.startswith(name + ".")]:
+            del sys.modules[loaded]
+        raise
+    finally:
+        sys.dont_write_bytecode = writes_bytecode
 
 
 def component_class(package: ModuleType, qualified_name: str) -> type:
@@ -67,7 +83,10 @@ def load_component(model: Path, search_path: Sequence[Path]) -> type:
     context = check([model], list(search_path))
     if context.diagnostics.has_errors:
         raise ModelError(report.text(context.diagnostics.items, all_cocos()))
-    unit = next(u.unit for u in context.workspace.loaded_units() if u.path == model.resolve())
+    units = [u.unit for u in context.workspace.loaded_units() if u.path == model.resolve()]
+    if not units or not isinstance(units[0], ast.StatechartUnit):
+        raise RunError(f"{model} holds no statechart")
+    unit = units[0]
     name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
     package = generated_package(context, [model.resolve()], cache_root())
     return component_class(package, name)

@@ -13,7 +13,7 @@ from typing import Any
 from lightrocks.workbench.app.adapter_factory import adapter_for, adapter_options, scene_of
 from lightrocks.workbench.app.errors import RunError
 from lightrocks.workbench.app.loading import load_component
-from lightrocks.workbench.app.values import Noise, parameters
+from lightrocks.workbench.app.values import Noise, parameters, parse_delay
 
 
 def success_outcome(cls: type, chosen: str | None = None) -> str | None:
@@ -73,20 +73,33 @@ def drive(
     from lightrocks.runtime.binding import bind
 
     chart = cls(**params)
+    steps = [parse_delay(e) if e.startswith("+") else e for e in events]
+    if adapter is not None and any(not isinstance(step, str) for step in steps):
+        raise RunError("+<time> advances the virtual clock of a run without adapter only")
+    unknown = [e for e in steps if isinstance(e, str) and e not in chart.events]
+    if unknown:
+        known = ", ".join(sorted(chart.events)) or "none"
+        raise RunError(f"unknown event '{unknown[0]}'; {cls.NAME} accepts: {known}")
     try:
         if adapter is not None:
             bind(adapter, cls.CELL)
     except BindingError as error:
         raise RunError(str(error)) from None
-    recorder = Trace(trace)
+    try:
+        recorder = Trace(trace)
+    except OSError as error:
+        raise RunError(f"--trace: cannot write {trace}: {error.strerror or error}") from None
     if progress is not None:
         recorder.listeners.append(progress)
     try:
         chart.start(adapter, trace=recorder)
-        for event in events:
+        for step in steps:
             if chart.finished:
                 break
-            chart.send(event)
+            if isinstance(step, str):
+                chart.send(step)
+            else:
+                chart.advance(step)
     finally:
         recorder.close()
     return chart
@@ -134,10 +147,8 @@ def run_component(
         if device is not None:
             device.close()
     summary = summarize(chart)
-    if wanted is None:
-        succeeded = chart.finished and summary.outcome != "error"
-    else:
-        succeeded = summary.outcome == wanted
+    # a plain chart without final state succeeds by resting without error
+    succeeded = summary.outcome != "error" if wanted is None else summary.outcome == wanted
     return RunResult(
         seed,
         summary.outcome,

@@ -3,6 +3,7 @@ language's own literal syntax so that units and signs mean what they mean in a m
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -44,8 +45,7 @@ def parse_value(text: str) -> Any:
     if isinstance(literal, ast.Quantity):
         _dimension(literal)
         number = -literal.value if negative else literal.value
-        plain = not literal.unit and not any(c in literal.text for c in ".eE")
-        return int(number) if plain and float(number).is_integer() else float(number)
+        return int(number) if _integral(literal) else float(number)
     if isinstance(literal, ast.BooleanLiteral | ast.StringLiteral) and not negative:
         return literal.value
     if isinstance(literal, ast.VectorLiteral) and not negative:
@@ -54,6 +54,103 @@ def parse_value(text: str) -> Any:
                 _dimension(element)
         return tuple(e.value for e in literal.elements if isinstance(e, ast.Quantity))
     raise RunError(f"'{text}' is not a literal value")
+
+
+def _integral(literal: ast.Quantity) -> bool:
+    plain = not literal.unit and not any(c in literal.text for c in ".eE")
+    return plain and float(literal.value).is_integer()
+
+
+def _expected(declared: tuple) -> str:
+    kind, name, dimensions = declared
+    if kind in ("quantity", "integer") and any(dimensions[0]):
+        return f"{name} [{Dimension(dimensions[0])}]"
+    if kind == "vector":
+        return f"{name}, {len(dimensions)} values"
+    return name
+
+
+def typed_value(name: str, text: str, declared: tuple) -> Any:
+    """``text`` read as a value of the declared parameter type, or a ``RunError`` naming the
+    parameter, what it expects and what was given: a quantity needs its unit, numbers must
+    be finite, an ``Integer`` whole, a vector complete."""
+    kind, _, dimensions = declared
+    wrong = RunError(
+        f"--param {name}={text}: {name} expects {_expected(declared)}, not {_describe(text)}"
+    )
+    if kind == "other":
+        raise RunError(f"--param {name}: a {declared[1]} cannot be given on the command line")
+    value = _literal(text)
+    if kind == "boolean":
+        if not isinstance(value, ast.BooleanLiteral):
+            raise wrong
+        return value.value
+    if kind == "string":
+        if not isinstance(value, ast.StringLiteral):
+            raise wrong
+        return value.value
+    if kind == "vector":
+        if not isinstance(value, ast.VectorLiteral) or len(value.elements) != len(dimensions):
+            raise wrong
+        return tuple(
+            _number(element, Dimension(d), wrong)
+            for element, d in zip(value.elements, dimensions, strict=True)
+        )
+    number = _number(value, Dimension(dimensions[0]), wrong)
+    if kind == "integer":
+        literal = value.operand if isinstance(value, ast.Unary) else value
+        if not _integral(literal):
+            raise wrong
+        return int(number)
+    return number
+
+
+def _number(value: ast.Expression, dimension: Dimension, wrong: RunError) -> float:
+    """An SI number of ``dimension`` from a (possibly negated) quantity literal."""
+    negative = isinstance(value, ast.Unary) and value.operator == "-"
+    literal = value.operand if negative else value
+    if not isinstance(literal, ast.Quantity):
+        raise wrong
+    if literal.unit:
+        if _dimension(literal) != dimension:
+            raise wrong
+    elif not dimension.dimensionless:
+        raise RunError(f"{wrong} (a quantity needs its unit)")
+    number = -literal.value if negative else literal.value
+    if not math.isfinite(number):
+        raise RunError(f"{wrong}: not a finite number")
+    return float(number)
+
+
+def _describe(text: str) -> str:
+    try:
+        value = _literal(text)
+    except RunError:
+        return f"'{text}'"
+    literal = value.operand if isinstance(value, ast.Unary) else value
+    if isinstance(literal, ast.Quantity):
+        if not literal.unit:
+            return f"the plain number {text}"
+        try:
+            return f"{text} [{_dimension(literal)}]"
+        except RunError:
+            return f"'{text}'"
+    kinds = {
+        ast.BooleanLiteral: "a Boolean",
+        ast.StringLiteral: "a String",
+        ast.VectorLiteral: f"a vector of {len(getattr(literal, 'elements', ()))} values",
+    }
+    return f"{text} ({kinds.get(type(literal), 'an expression')})"
+
+
+def parse_delay(text: str) -> float:
+    """``+500ms`` among ``--events``: how far to advance the virtual clock, in seconds."""
+    value = _literal(text.removeprefix("+"))
+    if not isinstance(value, ast.Quantity) or _dimension(value) != lookup("s").dimension:
+        raise RunError(f"'{text}' is not a time to wait: write it like +500ms")
+    if value.value < 0:
+        raise RunError(f"'{text}': time cannot go back")
+    return value.value
 
 
 def parse_noise(text: str) -> Noise:
@@ -69,6 +166,8 @@ def parse_noise(text: str) -> Noise:
             raise RunError(usage)
         if literal.value < 0:
             raise RunError(f"--perception-noise '{text}': a sigma cannot be negative")
+        if not math.isfinite(literal.value):
+            raise RunError(f"--perception-noise '{text}': a sigma must be a finite number")
         sigmas.append(literal.value)
     return sigmas[0], sigmas[1]
 
@@ -83,5 +182,8 @@ def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
         if name.strip() not in cls.PARAMETERS:
             known = ", ".join(cls.PARAMETERS) or "none"
             raise RunError(f"{cls.NAME} has no parameter '{name.strip()}'; parameters: {known}")
-        bound[cls.PARAMETERS[name.strip()]] = parse_value(text.strip())
+        name = name.strip()
+        declared = getattr(cls, "PARAMETER_TYPES", {}).get(name)
+        value = typed_value(name, text.strip(), declared) if declared else parse_value(text)
+        bound[cls.PARAMETERS[name]] = value
     return bound

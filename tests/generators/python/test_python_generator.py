@@ -103,11 +103,13 @@ def test_turnstile_from_python(package):
 
 def test_turnstile_from_the_cli(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "user-cache"))
     trace = tmp_path / "t.jsonl"
     model = str(EXAMPLES / "plain" / "Turnstile.lr")
     assert main(["run", model, "--events", "coin,push,shutdown", "--trace", str(trace)]) == 0
     assert '"outcome": "Off"' in trace.read_text().splitlines()[-1]
-    assert (tmp_path / ".lightrocks-cache").is_dir()
+    assert [p.name for p in tmp_path.iterdir() if p.name != "user-cache"] == ["t.jsonl"]
+    assert any((tmp_path / "user-cache" / "lightrocks").glob("*/manifest.json"))
 
 
 def test_cli_reports_unknown_adapter_and_parameter(tmp_path, monkeypatch, capsys):

@@ -1,0 +1,140 @@
+"""The SFC target judged by MatIEC: every generated file compiles and links, and the compiled
+program steps through the same states and outcomes as the Python runtime on a dry run.
+
+Needs MatIEC (``MATIEC=<dir>`` or ``/opt/matiec``, see docs/generators.md) and gcc; skipped
+with the reason where they are absent.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+from conftest import EXAMPLES, generate
+from plc import (
+    Scenario,
+    comparable,
+    driver_source,
+    gcc,
+    iec2c,
+    matiec_home,
+    python_trace,
+    sfc_trace,
+)
+
+from lightrocks.generators.sfc_iec61131 import build_unit
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.workbench.check import check
+
+CASES = ("screwing", "din_rail", "plain")
+SCREW_TASK = EXAMPLES / "screwing" / "tasks" / "ScrewTask.lr"
+SCREW_IN = EXAMPLES / "screwing" / "skills" / "ScrewIn.lr"
+RAIL_TASK = EXAMPLES / "din_rail" / "tasks" / "AssembleRail.lr"
+TURNSTILE = EXAMPLES / "plain" / "Turnstile.lr"
+MODELS = Path(__file__).parent / "models"
+PRESS = MODELS / "plant" / "Press.lr"
+SEARCH = [MODELS, EXAMPLES]
+
+SCENARIOS = [
+    Scenario("screw nominal", SCREW_TASK),
+    Scenario("screw not gripped", SCREW_TASK, sensors={"gripper.holding": False}),
+    Scenario("screw localize timeout", SCREW_TASK, {"camera.localize": ["timeout"]}),
+    Scenario("screw gripper fault", SCREW_TASK, {"gripper.close": ["error"]}),
+    Scenario("screw arm fault", SCREW_TASK, {"robot.moveCartesian": [None, None, "error"]}),
+    Scenario("screw arm timeout", SCREW_TASK, {"robot.moveCartesian": [None, "timeout"]}),
+    Scenario("screw-in alone", SCREW_IN),
+    Scenario("screw-in regrasp fault", SCREW_IN, {"gripper.close": [None, "error"]}),
+    Scenario("rail nominal", RAIL_TASK),
+    Scenario("rail not gripped", RAIL_TASK, sensors={"gripper.holding": False}),
+    Scenario("rail localize timeout", RAIL_TASK, {"camera.localize": [None, "timeout"]}),
+    Scenario("rail arm fault", RAIL_TASK, {"robot.moveCartesian": [None] * 6 + ["error"]}),
+    Scenario("rail release fault", RAIL_TASK, {"gripper.open": [None, None, "error"]}),
+    Scenario(
+        "turnstile passages",
+        TURNSTILE,
+        events=["coin", "push", "coin", "coin", "push", "service", "resume", "shutdown"],
+    ),
+    Scenario("turnstile ignored events", TURNSTILE, events=["push", "resume", "coin", "shutdown"]),
+    Scenario("press job", PRESS, events=["go", "load", "again", "release", "go", "bail", "stop"]),
+    Scenario(
+        "press broken invariant", PRESS, events=["go", "load", *["again"] * 4, "fixed", "stop"]
+    ),
+    Scenario("press idle stop", PRESS, events=["load", "stop"]),
+    Scenario("press stop in job", PRESS, events=["go", "load", "stop"]),
+]
+
+
+@pytest.fixture(scope="module")
+def home() -> Path:
+    found = matiec_home()
+    if found is None:
+        pytest.skip("MatIEC not found: set MATIEC=<dir> or build it in /opt/matiec")
+    if shutil.which("gcc") is None:
+        pytest.skip("gcc not found")
+    return found
+
+
+def _unit(model: Path):
+    context = check([model], SEARCH)
+    result = analysis(context)
+    top = next(c for c in result.models.components if c.loaded.path == model.resolve())
+    return build_unit(top, result.typing)
+
+
+def _compile(home: Path, source: Path, model: Path) -> str:
+    """Empty when MatIEC accepts ``source`` and gcc links its C; else what went wrong."""
+    out = source.with_suffix("")
+    compiled = iec2c(home, source, out)
+    if compiled.returncode != 0:
+        return f"iec2c: {compiled.stderr}{compiled.stdout}"
+    driver = driver_source(_unit(model), Scenario("link", model), max_cycles=1)
+    built = gcc(home, out, driver, out / "program")
+    return "" if built.returncode == 0 else f"gcc: {built.stderr}"
+
+
+@pytest.mark.slow
+def test_every_generated_file_compiles_and_links(home: Path, tmp_path: Path) -> None:
+    jobs = []
+    for case in CASES:
+        models = sorted((EXAMPLES / case).rglob("*.lr"))
+        for name, text in generate("sfc", models).items():
+            source = tmp_path / case / name
+            source.parent.mkdir(parents=True, exist_ok=True)
+            source.write_text(text)
+            jobs.append((source, next(m for m in models if m.stem == source.stem)))
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        failures = list(pool.map(lambda job: _compile(home, *job), jobs))
+    accepted = sum(not f.startswith("iec2c") for f in failures)
+    linked = failures.count("")
+    print(f"\nMatIEC accepted {accepted}/{len(jobs)}, gcc compiled and linked {linked}/{len(jobs)}")
+    assert linked == len(jobs) >= 16, [f for f in failures if f]
+
+
+def _steps_alike(home: Path, out: Path, scenario: Scenario) -> bool:
+    unit = _unit(scenario.model)
+    text = generate("sfc", [scenario.model], search=SEARCH)[f"{unit.top.name}.st"]
+    out.mkdir()
+    source = out / "unit.st"
+    source.write_text(text)
+    assert iec2c(home, source, out / "c").returncode == 0, scenario.name
+    built = gcc(home, out / "c", driver_source(unit, scenario, 400_000), out / "run")
+    assert built.returncode == 0, built.stderr
+    expected = comparable(python_trace(scenario, SEARCH), unit)
+    assert expected, f"{scenario.name}: the dry run produced no comparable event"
+    return sfc_trace(out / "run", unit) == expected
+
+
+@pytest.mark.slow
+def test_compiled_program_steps_like_python(home: Path, tmp_path: Path) -> None:
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        alike = list(
+            pool.map(
+                lambda i: _steps_alike(home, tmp_path / str(i), SCENARIOS[i]), range(len(SCENARIOS))
+            )
+        )
+    differing = [s.name for s, same in zip(SCENARIOS, alike, strict=True) if not same]
+    print(f"\n{len(SCENARIOS) - len(differing)}/{len(SCENARIOS)} scenarios step like Python")
+    assert not differing, f"the compiled program steps differently in: {differing}"

@@ -1,0 +1,53 @@
+"""Semantics of the newer constructs that the sismic differential cannot show."""
+
+from __future__ import annotations
+
+import pytest
+
+from lightrocks.adapters.dryrun import DryRunAdapter
+
+BLINK = """package d;
+
+statechart Blink {
+  parameters {
+    Integer flashes = 0;
+  }
+
+  initial state Idle;
+  state Lit {
+    internal after(250 ms) / { flashes = flashes + 1; };
+  }
+  choice Enough;
+
+  Idle -> Lit on;
+  Lit -> Enough off;
+  Enough -> Idle [flashes > 0];
+}
+"""
+
+
+def test_an_internal_time_event_fires_once_per_entry(build) -> None:
+    chart = build("Blink", BLINK)().start()
+    chart.send("on")
+    chart.advance(1.0)
+    assert chart.flashes == 1
+    assert chart.active_configuration == ("Blink", "Lit")
+    chart.send("off")
+    assert chart.active_configuration == ("Blink", "Idle")
+
+
+def test_a_choice_without_a_branch_that_holds_is_an_error(build) -> None:
+    chart = build("Blink", BLINK)().start()
+    chart.send("on")
+    chart.send("off")
+    assert chart.outcome == "error"
+    assert chart.fault.message == "no branch of choice 'Enough' holds"
+
+
+def test_the_virtual_clock_only_runs_without_adapter(build) -> None:
+    chart = build("Blink", BLINK)().start()
+    with pytest.raises(ValueError, match="time cannot go back"):
+        chart.advance(-1)
+    bound = build("Blink", BLINK)().start(DryRunAdapter())
+    with pytest.raises(RuntimeError, match="adapter's clock"):
+        bound.advance(1)
