@@ -2,108 +2,78 @@
 
 Every open, change and save re-checks the edited file and the files that depend on it, and
 publishes the findings of every file whose findings changed, so fixing an imported chart
-clears the findings of its importers.
+clears the findings of its importers. The features answer from an index of the checked
+files (:mod:`.index`); this module only wires requests to them.
 """
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
-from typing import Any
 
 from lsprotocol import types as lsp
 from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
-from lightrocks.metamodel.ast import Condition, Position, State
 from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.workbench.diagnostics import Diagnostic, Severity
+from lightrocks.workbench.app.lsp import completion as completing
+from lightrocks.workbench.app.lsp import diagnostics, navigation
+from lightrocks.workbench.app.lsp.hover import hover as describe
+from lightrocks.workbench.app.lsp.index import Index
+from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.workbench.diagnostics import Diagnostic
 from lightrocks.workbench.incremental import IncrementalCheck
 from lightrocks.workbench.languages import language_for
-from lightrocks.workbench.workspace import Loaded
-
-KEYWORDS = (
-    "package", "import", "statechart", "state", "initial", "final", "parameters", "entry",
-    "exit", "do", "end", "condition", "true", "false",
-)  # fmt: skip
-WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_.]*")
-SEVERITIES = {
-    Severity.ERROR: lsp.DiagnosticSeverity.Error,
-    Severity.WARNING: lsp.DiagnosticSeverity.Warning,
-    Severity.INFO: lsp.DiagnosticSeverity.Information,
-}
 
 
 class LightRocksServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("lightrocks", "1")
         self.checker: IncrementalCheck | None = None
-        self.published: set[Path] = set()
+        self.index = Index()
+        self.published: dict[Path, list[Diagnostic]] = {}
+
+    def text(self, path: Path) -> Text:
+        """An open document's buffer, else the file on disk."""
+        document = self.workspace.text_documents.get(from_fs_path(str(path)))
+        if document is not None:
+            return Text(document.source)
+        try:
+            return Text(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError):
+            return Text("")
 
     def recheck(self, path: Path, text: str | None) -> None:
-        """Re-check after an edit and publish findings of every file that may have changed."""
+        """Re-check after an edit and publish the findings of every file that changed."""
+        path = path.resolve()
         if self.checker is None:
             root = self.workspace.root_path
             self.checker = IncrementalCheck([Path(root) if root else path.parent])
-            self.checker.texts[path.resolve()] = text if text is not None else ""
-            if text is None:
-                self.checker.texts.pop(path.resolve())
+            if text is not None:
+                self.checker.texts[path] = text
             findings = self.checker.full()
         else:
             findings = self.checker.update({path: text})
-        by_file: dict[Path, list[lsp.Diagnostic]] = {}
+        if self.checker.context is not None:
+            self.index.update(self.checker.context.workspace, self.text)
+        by_file: dict[Path, list[Diagnostic]] = {}
         for finding in findings:
-            by_file.setdefault(Path(finding.file).resolve(), []).append(self.diagnostic(finding))
-        for file in self.published | set(by_file):
-            uri = from_fs_path(str(file))
-            items = by_file.get(file, [])
-            self.text_document_publish_diagnostics(
-                lsp.PublishDiagnosticsParams(uri=uri, diagnostics=items)
-            )
-        self.published = set(by_file)
-
-    def diagnostic(self, finding: Diagnostic) -> lsp.Diagnostic:
-        path = Path(finding.file).resolve()
-        return lsp.Diagnostic(
-            range=self.word_range(path, finding.line, finding.column),
-            message=finding.message + (f" ({finding.hint})" if finding.hint else ""),
-            severity=SEVERITIES[finding.severity],
-            code=finding.code,
-            source="lightrocks",
-            data={"hint": finding.hint} if finding.hint else None,
-        )
-
-    def text_of(self, path: Path) -> str:
-        document = self.workspace.get_text_document(from_fs_path(str(path)))
-        try:
-            return document.source
-        except OSError:
-            return ""
-
-    def word_range(self, path: Path, line: int, column: int) -> lsp.Range:
-        """The identifier starting at a 1-based position, or an empty range there."""
-        lines = self.text_of(path).splitlines()
-        row, col = max(line - 1, 0), max(column - 1, 0)
-        text = lines[row] if row < len(lines) else ""
-        match = WORD.match(text, col)
-        end = match.end() if match else col
-        return lsp.Range(lsp.Position(row, col), lsp.Position(row, end))
-
-    def loaded(self, uri: str) -> Loaded | None:
-        if self.checker is None or self.checker.context is None:
-            return None
-        path = Path(to_fs_path(uri)).resolve()
-        found = self.checker.context.workspace.files.get(path)
-        if found is None:
-            found = self.checker.context.workspace.load(path)
-        return found
+            by_file.setdefault(Path(finding.file).resolve(), []).append(finding)
+        for file in {path} | set(self.published) | set(by_file):
+            current = by_file.get(file, [])
+            if file == path or current != self.published.get(file, []):
+                text_of_file = self.text(file)
+                items = [diagnostics.diagnostic(f, text_of_file) for f in current]
+                self.text_document_publish_diagnostics(
+                    lsp.PublishDiagnosticsParams(uri=from_fs_path(str(file)), diagnostics=items)
+                )
+        self.published = by_file
 
 
 server = LightRocksServer()
 
 
 def _path(uri: str) -> Path:
-    return Path(to_fs_path(uri))
+    return Path(to_fs_path(uri)).resolve()
 
 
 @server.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
@@ -123,118 +93,88 @@ def did_save(ls: LightRocksServer, params: lsp.DidSaveTextDocumentParams) -> Non
     ls.recheck(_path(uri), ls.workspace.get_text_document(uri).source)
 
 
+@server.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
+def did_close(ls: LightRocksServer, params: lsp.DidCloseTextDocumentParams) -> None:
+    ls.recheck(_path(params.text_document.uri), None)  # back to the file on disk
+
+
 @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)
 def formatting(ls: LightRocksServer, params: lsp.DocumentFormattingParams) -> list[lsp.TextEdit]:
     """The whole document printed canonically; nothing when it does not parse."""
     path = _path(params.text_document.uri)
     language = language_for(path.suffix)
-    text = ls.workspace.get_text_document(params.text_document.uri).source
+    text = ls.text(path)
     if language is None:
         return []
     try:
-        printed = language.format(text, str(path))
+        printed = language.format(text.source, str(path))
     except SyntaxProblem:
         return []
-    if printed == text:
+    if printed == text.source:
         return []
-    end = lsp.Position(len(text.splitlines()) + 1, 0)
-    return [lsp.TextEdit(lsp.Range(lsp.Position(0, 0), end), printed)]
+    return [lsp.TextEdit(lsp.Range(lsp.Position(0, 0), text.end()), printed)]
 
 
 @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
 def document_symbols(
     ls: LightRocksServer, params: lsp.DocumentSymbolParams
 ) -> list[lsp.DocumentSymbol]:
-    """The declarations of the file, with the states of a statechart nested below it."""
-    loaded = ls.loaded(params.text_document.uri)
-    if loaded is None:
-        return []
-    path = _path(params.text_document.uri)
-    return [
-        _symbol(ls, path, name.rpartition(".")[2], node)
-        for name, node in loaded.language.declarations(loaded.unit)
-    ]
-
-
-def _symbol(ls: LightRocksServer, path: Path, name: str, node: Any) -> lsp.DocumentSymbol:
-    where = node.position
-    kind = lsp.SymbolKind.Class if not isinstance(node, State) else lsp.SymbolKind.EnumMember
-    children = [
-        _symbol(ls, path, child.name, child)
-        for child in (getattr(node, "elements", None) or getattr(node, "body", None) or ())
-        if isinstance(child, State)
-    ]
-    word = ls.word_range(path, where.line, where.column)
-    return lsp.DocumentSymbol(
-        name=name or "?", kind=kind, range=word, selection_range=word, children=children
-    )
+    file = ls.index.files.get(_path(params.text_document.uri))
+    return navigation.document_symbols(file) if file else []
 
 
 @server.feature(lsp.TEXT_DOCUMENT_DEFINITION)
 def definition(ls: LightRocksServer, params: lsp.DefinitionParams) -> lsp.Location | None:
-    """Where the name under the cursor is declared: a state of the file or an imported model."""
-    loaded = ls.loaded(params.text_document.uri)
-    word = _word_at(ls, params.text_document.uri, params.position)
-    if loaded is None or not word or ls.checker is None or ls.checker.context is None:
-        return None
-    state = _states(loaded.unit).get(word)
-    if state is not None:
-        return _location(ls, loaded.path, state.position)
-    symbol = ls.checker.context.workspace.resolve(loaded, word)
-    if symbol is None:
-        return None
-    return _location(ls, symbol.loaded.path, symbol.node.position)
+    return navigation.definition(ls.index, _path(params.text_document.uri), params.position)
 
 
-@server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=["."]))
+@server.feature(lsp.TEXT_DOCUMENT_REFERENCES)
+def references(ls: LightRocksServer, params: lsp.ReferenceParams) -> list[lsp.Location]:
+    path, include = _path(params.text_document.uri), params.context.include_declaration
+    return navigation.references(ls.index, path, params.position, include)
+
+
+@server.feature(lsp.TEXT_DOCUMENT_PREPARE_RENAME)
+def prepare_rename(ls: LightRocksServer, params: lsp.PrepareRenameParams) -> lsp.Range | None:
+    return navigation.prepare_rename(ls.index, _path(params.text_document.uri), params.position)
+
+
+@server.feature(lsp.TEXT_DOCUMENT_RENAME)
+def rename(ls: LightRocksServer, params: lsp.RenameParams) -> lsp.WorkspaceEdit | None:
+    path = _path(params.text_document.uri)
+    return navigation.rename(ls.index, path, params.position, params.new_name)
+
+
+@server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[".", " "]))
 def completion(ls: LightRocksServer, params: lsp.CompletionParams) -> list[lsp.CompletionItem]:
-    """Keywords, the file's states, outcomes of its imported charts, and the visible names."""
-    items = [lsp.CompletionItem(k, kind=lsp.CompletionItemKind.Keyword) for k in KEYWORDS]
-    loaded = ls.loaded(params.text_document.uri)
-    if loaded is not None and ls.checker is not None and ls.checker.context is not None:
-        workspace = ls.checker.context.workspace
-        states = _states(loaded.unit)
-        items += [lsp.CompletionItem(s, kind=lsp.CompletionItemKind.EnumMember) for s in states]
-        outcomes = {
-            element.name
-            for state in states.values()
-            for stereotype in state.stereotypes
-            if stereotype.name == "import" and stereotype.value
-            for symbol in [workspace.resolve(loaded, stereotype.value)]
-            if symbol is not None
-            for element in getattr(symbol.node, "elements", ())
-            if isinstance(element, Condition) and element.kind == "end"
-        }
-        items += [lsp.CompletionItem(o, kind=lsp.CompletionItemKind.Event) for o in outcomes]
-        scope = workspace.scope(loaded)
-        items += [lsp.CompletionItem(n, kind=lsp.CompletionItemKind.Class) for n in scope]
-    return items
+    path = _path(params.text_document.uri)
+    prefix = ls.text(path).prefix(params.position)
+    return completing.completions(ls.index.files.get(path), prefix)
 
 
-def _states(unit: Any) -> dict[str, State]:
-    found: dict[str, State] = {}
-    pending = list(getattr(getattr(unit, "statechart", None), "elements", ()))
-    while pending:
-        element = pending.pop()
-        if isinstance(element, State):
-            found.setdefault(element.name, element)
-            pending.extend(element.body or ())
-    return found
+@server.feature(lsp.TEXT_DOCUMENT_HOVER)
+def hover(ls: LightRocksServer, params: lsp.HoverParams) -> lsp.Hover | None:
+    found = ls.index.at(_path(params.text_document.uri), params.position)
+    if found is None or ls.checker is None or ls.checker.context is None:
+        return None
+    return describe(ls.index, found, ls.checker.context.workspace)
 
 
-def _word_at(ls: LightRocksServer, uri: str, position: lsp.Position) -> str:
-    lines = ls.workspace.get_text_document(uri).source.splitlines()
-    if position.line >= len(lines):
-        return ""
-    text = lines[position.line]
-    for match in WORD.finditer(text):
-        if match.start() <= position.character <= match.end():
-            return match.group()
-    return ""
+@server.feature(
+    lsp.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
+    lsp.SemanticTokensLegend(token_types=navigation.TOKEN_TYPES, token_modifiers=[]),
+)
+def semantic_tokens(ls: LightRocksServer, params: lsp.SemanticTokensParams) -> lsp.SemanticTokens:
+    path = _path(params.text_document.uri)
+    return navigation.semantic_tokens(ls.index.files.get(path), ls.text(path))
 
 
-def _location(ls: LightRocksServer, path: Path, where: Position) -> lsp.Location:
-    return lsp.Location(from_fs_path(str(path)), ls.word_range(path, where.line, where.column))
+@server.feature(
+    lsp.TEXT_DOCUMENT_CODE_ACTION,
+    lsp.CodeActionOptions(code_action_kinds=[lsp.CodeActionKind.QuickFix]),
+)
+def code_actions(ls: LightRocksServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction]:
+    return diagnostics.quick_fixes(params.text_document.uri, params.context.diagnostics)
 
 
 def main() -> int:
