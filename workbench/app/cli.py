@@ -13,7 +13,8 @@ from rich.console import Console
 
 from lightrocks.metamodel.ast import Position
 from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.workbench import report
+from lightrocks.workbench import parsecache, report
+from lightrocks.workbench.app.parsestore import DiskStore
 from lightrocks.workbench.check import all_cocos, check
 from lightrocks.workbench.diagnostics import Diagnostics
 from lightrocks.workbench.files import write_atomic
@@ -342,6 +343,7 @@ def parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
     console = Console(stderr=True, highlight=False)
+    parsecache.use_store(DiskStore())  # unchanged files are not parsed again by the next run
     try:
         return COMMANDS[args.command][1](args)
     except UsageError as error:
