@@ -32,6 +32,7 @@ class IncrementalCheck:
         self.graph: nx.DiGraph = nx.DiGraph()
         self.findings: dict[str, list[Diagnostic]] = {}
         self.context: CheckContext | None = None
+        self.package_files: Callable[[str], frozenset[Path]] = frozenset
         self.rechecked: set[Path] = set()
 
     def full(self) -> list[Diagnostic]:
@@ -39,7 +40,8 @@ class IncrementalCheck:
         self.context = check(self.paths, self.model_path, self.texts)
         workspace = self.context.workspace
         self.model_path = [root for root in workspace.model_path.roots if root != LIBRARY]
-        self.graph = dependency_graph(workspace)
+        self.package_files = cache(partial(_package_files, workspace))
+        self.graph = dependency_graph(workspace, self.package_files)
         self.findings = {}
         for finding in self.context.diagnostics.items:
             self.findings.setdefault(finding.file, []).append(finding)
@@ -66,9 +68,10 @@ class IncrementalCheck:
         for finding in context.diagnostics.items:
             if finding.file in shown:
                 self.findings.setdefault(finding.file, []).append(finding)
-        for path in affected:
+        for path in changed:  # only an edited file can have changed its imports
             self.graph.remove_edges_from(list(self.graph.out_edges(path)))
-            self.graph.add_edges_from((path, dep) for dep in dependencies(context.workspace, path))
+            found = dependencies(context.workspace, path, self.package_files)
+            self.graph.add_edges_from((path, dep) for dep in found)
         self.context = context
         self.rechecked = affected
         return self.items
@@ -78,21 +81,21 @@ class IncrementalCheck:
         return sorted(d for findings in self.findings.values() for d in findings)
 
 
-def dependency_graph(workspace: Workspace) -> nx.DiGraph:
+def dependency_graph(
+    workspace: Workspace, package_files: Callable[[str], frozenset[Path]]
+) -> nx.DiGraph:
     """An edge from each loaded file to every file it may resolve names through."""
     graph = nx.DiGraph()
     graph.add_nodes_from(workspace.files)
-    package_files = cache(partial(_package_files, workspace))
     for path in list(workspace.files):
         graph.add_edges_from((path, dep) for dep in dependencies(workspace, path, package_files))
     return graph
 
 
 def dependencies(
-    workspace: Workspace, path: Path, package_files: Callable[[str], frozenset[Path]] | None = None
+    workspace: Workspace, path: Path, package_files: Callable[[str], frozenset[Path]]
 ) -> set[Path]:
     """The files of every package a file's names may resolve through."""
-    package_files = package_files or partial(_package_files, workspace)
     loaded = workspace.files.get(path)
     packages = set(IMPLICIT_PACKAGES) | set(workspace.model_path.packages_of(path))
     if isinstance(loaded, Loaded):
