@@ -13,10 +13,7 @@ function activate(context) {
     "LightRocks",
     { command, args },
     {
-      documentSelector: [
-        { scheme: "file", language: "lightrocks" },
-        { scheme: "file", language: "lightrocks-domain" },
-      ],
+      documentSelector: [{ scheme: "file", language: "lightrocks" }],
     },
   );
   context.subscriptions.push(client);
