@@ -194,6 +194,7 @@ async def test_hover_shows_units_signatures_and_imported_outcomes(
         (retreat_uri, retreat, "state Up(", "Up"),
         (lift_uri, lift, "distance)", "distance"),
         (lift_uri, lift, "robot.moveCartesian", "moveCartesian"),
+        (lift_uri, lift, "distance = 100 mm", "mm"),
     ):
         found = await client.text_document_hover_async(
             lsp.HoverParams(document(uri), cursor(text, line_text, word))
@@ -203,6 +204,7 @@ async def test_hover_shows_units_signatures_and_imported_outcomes(
     assert "outcomes: lifted" in shown["Up"]
     assert "Length distance" in shown["distance"] and "[m]" in shown["distance"]
     assert shown["moveCartesian"].count("command moveCartesian(") == 1
+    assert "100 mm = 0.1 [m]" in shown["mm"]
 
 
 @pytest.mark.asyncio
@@ -260,3 +262,18 @@ async def test_closing_an_edited_file_goes_back_to_the_file_on_disk(
     client.text_document_did_close(lsp.DidCloseTextDocumentParams(document(uri)))
     await settle(client, (examples / LIFT).as_uri())
     assert client.diagnostics[uri] == ()
+
+
+@pytest.mark.asyncio
+async def test_a_model_outside_the_workspace_is_checked_too(
+    client: LanguageClient, examples: Path, tmp_path: Path
+) -> None:
+    await open_file(client, examples / RETREAT)
+    outside = tmp_path / "elsewhere" / "Door.lr"
+    outside.parent.mkdir()
+    text = (examples / "plain" / "Turnstile.lr").read_text(encoding="utf-8")
+    door = text.replace("package plain", "package elsewhere").replace("Turnstile", "Door")
+    outside.write_text(door, encoding="utf-8")
+    uri = await open_file(client, outside, door.replace("Locked -> Unlocked", "Locked -> Opened"))
+    [finding] = [d for d in client.diagnostics[uri] if d.code == "LR0110"]
+    assert "'Opened'" in finding.message

@@ -2,14 +2,21 @@
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from lsprotocol import types as lsp
 
 from lightrocks.languages.domain.types import Types, describe
 from lightrocks.metamodel import ast, printer
+from lightrocks.metamodel.units import UnitError, lookup
 from lightrocks.workbench.app.lsp.index import Declared, Index, Occurrence
+from lightrocks.workbench.app.lsp.text import Text
 from lightrocks.workbench.workspace import Workspace
+
+QUANTITY = re.compile(
+    r"(?<![\w.])(\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)\s*([A-Za-z]\w*(?:/[A-Za-z]\w*)?)"
+)
 
 
 def hover(index: Index, occurrence: Occurrence, workspace: Workspace) -> lsp.Hover | None:
@@ -21,6 +28,25 @@ def hover(index: Index, occurrence: Occurrence, workspace: Workspace) -> lsp.Hov
         lsp.MarkupContent(lsp.MarkupKind.Markdown, f"```lightrocks\n{text}\n```"),
         occurrence.range,
     )
+
+
+def quantity_hover(text: Text, position: lsp.Position) -> lsp.Hover | None:
+    """A literal with a unit under the cursor: its value in SI and its dimension."""
+    line = text.lines[position.line] if position.line < len(text.lines) else ""
+    for match in QUANTITY.finditer(line):
+        if match.start() <= position.character <= match.end():
+            try:
+                info = lookup(match.group(2))
+            except UnitError:
+                return None
+            si = float(match.group(1)) * info.factor
+            shown = f"{match.group()} = {si:g} [{info.dimension}]"
+            where = lsp.Range(
+                lsp.Position(position.line, match.start()),
+                lsp.Position(position.line, match.end()),
+            )
+            return lsp.Hover(lsp.MarkupContent(lsp.MarkupKind.Markdown, f"`{shown}`"), where)
+    return None
 
 
 def describe_declared(declared: Declared, workspace: Workspace) -> str:

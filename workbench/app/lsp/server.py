@@ -18,6 +18,7 @@ from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.app.lsp import completion as completing
 from lightrocks.workbench.app.lsp import diagnostics, navigation
 from lightrocks.workbench.app.lsp.hover import hover as describe
+from lightrocks.workbench.app.lsp.hover import quantity_hover
 from lightrocks.workbench.app.lsp.index import Index
 from lightrocks.workbench.app.lsp.text import Text
 from lightrocks.workbench.diagnostics import Diagnostic
@@ -52,6 +53,8 @@ class LightRocksServer(LanguageServer):
                 self.checker.texts[path] = text
             findings = self.checker.full()
         else:
+            if not any(path.is_relative_to(root.resolve()) for root in self.checker.paths):
+                self.checker.paths.append(path)  # a model opened from outside the workspace
             findings = self.checker.update({path: text})
         if self.checker.context is not None:
             self.index.update(self.checker.context.workspace, self.text)
@@ -154,8 +157,11 @@ def completion(ls: LightRocksServer, params: lsp.CompletionParams) -> list[lsp.C
 
 @server.feature(lsp.TEXT_DOCUMENT_HOVER)
 def hover(ls: LightRocksServer, params: lsp.HoverParams) -> lsp.Hover | None:
-    found = ls.index.at(_path(params.text_document.uri), params.position)
-    if found is None or ls.checker is None or ls.checker.context is None:
+    path = _path(params.text_document.uri)
+    found = ls.index.at(path, params.position)
+    if found is None:
+        return quantity_hover(ls.text(path), params.position)
+    if ls.checker is None or ls.checker.context is None:
         return None
     return describe(ls.index, found, ls.checker.context.workspace)
 
