@@ -73,6 +73,10 @@ async def test_completion_after_a_child_state_offers_its_outcomes(
     labels = [item.label for item in items]
     assert labels[0] == "lifted"
     assert "Up" not in labels
+    anywhere = await client.text_document_completion_async(
+        lsp.CompletionParams(document(uri), lsp.Position(position.line, 0))
+    )
+    assert {"Up", "distance", "go", "robot", "statechart"} <= {i.label for i in anywhere}
 
 
 @pytest.mark.asyncio

@@ -61,13 +61,13 @@ class Index:
 
     def update(self, workspace: Workspace, text_of: Callable[[Path], Text]) -> None:
         """Index again every file the workspace loaded."""
-        for loaded in workspace.loaded_units():
-            self.declared = {k: d for k, d in self.declared.items() if k[0] != loaded.path}
+        units = workspace.loaded_units()
+        paths = {loaded.path for loaded in units}
+        self.declared = {k: d for k, d in self.declared.items() if k[0] not in paths}
+        for loaded in units:
             builder = _Builder(workspace, loaded, text_of)
             self.files[loaded.path] = builder.build()
-            for occurrence in self.files[loaded.path].occurrences:
-                if occurrence.declaration and occurrence.key in builder.declared:
-                    self.declared[occurrence.key] = builder.declared[occurrence.key]
+            self.declared.update(builder.declared)
 
     def at(self, path: Path, position: lsp.Position) -> Occurrence | None:
         file = self.files.get(path.resolve())
