@@ -4,13 +4,15 @@ Each command "runs" for ``duration`` seconds of simulated time in ticks of ``ste
 ends with the first stop condition that holds on the scripted snapshot, or with the next
 outcome scripted for that command. Useful to walk a task's logic before a simulation, and to
 pin the executor's semantics in tests. Motion is idealised: ``moveCartesian`` puts the TCP at
-its goal, ``close`` makes the gripper hold, ``open`` lets go, ``localize`` answers the pose
-the environment already believes (identity).
+its goal (``travel`` and ``turned`` tell how far it went), ``close`` makes the gripper hold,
+``open`` lets go, ``localize`` answers the pose the environment already believes (identity).
+The per-command sensors start from zero with every command, as on the real devices.
 """
 
 from __future__ import annotations
 
 import inspect
+import math
 import typing
 from collections.abc import Callable, Mapping, Sequence
 from types import SimpleNamespace
@@ -29,12 +31,17 @@ from lightrocks.runtime.contract import (
 
 SensorScript = Mapping[str, Any | Callable[[float], Any]]
 
+PER_COMMAND = ("goalReached", "done", "travel", "turned", "peakForce")
+"""Sensors that describe the running command: neutral again when the next one starts."""
+
 
 class DryRunAdapter:
     """Implements :class:`runtime.contract.Adapter` for whatever devices a cell declares.
 
-    ``outcomes`` scripts outcomes per command, ``{"gripper.close": ["empty", "holding"]}``,
-    used one per call (``"error"`` raises an adapter fault, ``"timeout"`` spends the budget);
+    ``outcomes`` scripts outcomes per command, ``{"gripper.close": ["empty", "holding"]}``:
+    the next one ends the next call of that command once it has run (``"error"`` raises an
+    adapter fault, ``"timeout"`` spends the budget); a call that another stop condition ends
+    first (a preemption, an event) leaves it for the following call;
     ``sensors`` overrides sensor values, ``{"robot.wrench": Wrench(...)}`` or a function of
     the time. ``calls`` and ``holds`` record what the runtime asked for.
     """
@@ -57,6 +64,7 @@ class DryRunAdapter:
         self._types: dict[str, str] = {}
         self._commands: dict[str, list[str]] = {}
         self._state: dict[str, dict[str, Any]] = {}
+        self._neutral: dict[str, dict[str, Any]] = {}
         self.calls: list[tuple[str, str, dict[str, Any]]] = []
         self.holds = 0
 
@@ -75,6 +83,7 @@ class DryRunAdapter:
                 elif inspect.isfunction(member) and not name.startswith("_"):
                     commands.append(name)
             self._state[instance] = sensors
+            self._neutral[instance] = dict(sensors)
             self._commands[instance] = commands
 
     def devices(self) -> Mapping[str, str]:
@@ -112,13 +121,14 @@ class DryRunAdapter:
             raise AdapterError(f"unknown command {device}.{command}")
         self.calls.append((device, command, dict(args)))
         scripted = self._outcomes.get(f"{device}.{command}") or []
-        planned = scripted.pop(0) if scripted else None
+        planned = scripted[0] if scripted else None
         if planned == "error":
+            scripted.pop(0)
             raise AdapterError(f"scripted fault of {device}.{command}")
         state = self._state[device]
-        for flag in ("goalReached", "done"):
-            if flag in state:
-                state[flag] = False
+        for sensor in PER_COMMAND:
+            if sensor in state:
+                state[sensor] = self._neutral[device][sensor]
         start, value = self._time, None
         try:
             while True:
@@ -128,14 +138,18 @@ class DryRunAdapter:
                 if settled:
                     value = self._settle(device, command, args)
                 if settled and planned not in (None, TIMEOUT):
+                    scripted.pop(0)
                     return CommandResult(planned, value)
                 if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
                     if elapsed >= budget - 1e-9:
+                        scripted.pop(0)
                         return CommandResult(TIMEOUT)
                     continue
                 snapshot = self.snapshot()
                 for condition in stop:
                     if condition.holds(snapshot):
+                        if condition.name == planned:  # it ended as scripted: used
+                            scripted.pop(0)
                         return CommandResult(condition.name, value)
                 if elapsed >= budget - 1e-9:
                     return CommandResult(TIMEOUT)
@@ -151,10 +165,14 @@ class DryRunAdapter:
             if flag in state:
                 state[flag] = True
         if command == "moveCartesian" and isinstance(args.get("goal"), pin.SE3):
-            if isinstance(state.get("tcp"), pin.SE3) and "travel" in state:
-                moved = args["goal"].translation - state["tcp"].translation
-                state["travel"] = Vector3.of(moved)
-            state["tcp"] = args["goal"]
+            goal, tcp = args["goal"], state.get("tcp")
+            if isinstance(tcp, pin.SE3):
+                if "travel" in state:
+                    state["travel"] = Vector3.of(goal.translation - tcp.translation)
+                if "turned" in state:
+                    relative = tcp.rotation.T @ goal.rotation  # about the tool's own z
+                    state["turned"] = float(math.atan2(relative[1, 0], relative[0, 0]))
+            state["tcp"] = goal
         elif command == "close" and "holding" in state:
             state["holding"] = True
         elif command == "open" and "holding" in state:

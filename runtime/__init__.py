@@ -18,6 +18,7 @@ from lightrocks.runtime.contract import (
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
 from lightrocks.runtime.executor import ERROR, PREEMPTED, Executor, Fault, UnknownEvent
 from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
+from lightrocks.runtime.safety import Bound, SafeRange
 from lightrocks.runtime.states import (
     Action,
     Choice,
@@ -42,6 +43,7 @@ __all__ = [
     "Adapter",
     "AdapterError",
     "BindingError",
+    "Bound",
     "Cell",
     "Choice",
     "CommandResult",
@@ -55,6 +57,7 @@ __all__ = [
     "Final",
     "Frame",
     "Invariant",
+    "SafeRange",
     "SceneObject",
     "Snapshot",
     "State",

@@ -18,6 +18,7 @@ from typing import Any
 
 from lightrocks.runtime.contract import TIMEOUT, Adapter, CommandResult, Snapshot, StopCondition
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
+from lightrocks.runtime.safety import refusal
 from lightrocks.runtime.states import Action, Choice, Composite, State, Transition
 from lightrocks.runtime.trace import Trace, to_json
 
@@ -437,6 +438,10 @@ class Executor:
             k: object_name(v) if isinstance(v, SceneObject) else v
             for k, v in action.arguments(s).items()
         }
+        refused = refusal(action.RANGES, arguments)
+        if refused is not None:
+            self._hold()
+            return self._error(action, refused, action.LOCATION)
         watch = _Watch()
         stops = [
             StopCondition(c.name, watch(_bound(c.holds, action), c.location or action.LOCATION))

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from lightrocks.runtime.contract import Snapshot
+from lightrocks.runtime.safety import SafeRange
 
 Predicate = Callable[[Any, Snapshot], bool]
 Effect = Callable[[Any, Snapshot], None]
@@ -127,6 +128,8 @@ class Action(State):
     BUDGET: ClassVar[float] = 30.0
     ENDS: ClassVar[tuple[Condition, ...]] = ()
     SENSORS: ClassVar[tuple[tuple[str, str], ...]] = ()
+    RANGES: ClassVar[dict[str, SafeRange]] = {}
+    """The declared safe range of every ranged argument, checked before the command is sent."""
 
     def arguments(self, s: Snapshot) -> dict[str, Any]:
         """The command's arguments by name, in SI (generated)."""

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 from collections.abc import Callable
@@ -47,19 +48,32 @@ class Trace:
         self._stream: IO[str] | None = (
             open(file, "w", encoding="utf-8") if isinstance(file, str | Path) else file  # noqa: SIM115
         )
+        self.failure: OSError | None = None
+        """Why the file could not be written (a full disk): the records stay in memory and
+        the run goes on, since a trace must never stop a robot half-way."""
 
     def write(self, time: float, kind: str, **fields: Any) -> None:
         record: Record = {"time": round(time, 9), "kind": kind, **fields}
         self.records.append(record)
         if self._stream is not None:
-            self._stream.write(json.dumps(record) + "\n")
+            self._guarded(self._stream.write, json.dumps(record) + "\n")
         for listener in self.listeners:
             listener(record)
 
     def close(self) -> None:
         if self._stream is not None and self._owned:
-            self._stream.close()
+            self._guarded(self._stream.close)
         self._stream = None
+
+    def _guarded(self, action: Callable[..., Any], *args: Any) -> None:
+        try:
+            action(*args)
+        except OSError as error:
+            self.failure = self.failure or error
+            stream, self._stream = self._stream, None
+            if self._owned and stream is not None:
+                with contextlib.suppress(OSError):
+                    stream.close()
 
     def of_kind(self, *kinds: str) -> list[Record]:
         return [r for r in self.records if r["kind"] in kinds]

@@ -5,6 +5,8 @@ folders as top-level packages: ``python -m pytest`` puts the working directory o
 from __future__ import annotations
 
 import sys
+from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -20,3 +22,29 @@ def _private_run_cache(tmp_path_factory: pytest.TempPathFactory):
     patch.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("user-cache")))
     yield
     patch.undo()
+
+
+@pytest.fixture
+def tally(record_property) -> Callable[..., None]:
+    """``tally(line, **counts)``: counts summed over the whole run and printed as ``line``
+    (a format string) in the terminal summary; they travel in the test reports, so the sum
+    also covers tests run by other pytest-xdist workers."""
+
+    def add(line: str, **counts: int) -> None:
+        record_property("tally", (line, counts))
+
+    return add
+
+
+def pytest_terminal_summary(terminalreporter) -> None:
+    totals: dict[str, Counter] = {}
+    for reports in terminalreporter.stats.values():
+        for report in reports:
+            if getattr(report, "when", None) != "call":
+                continue
+            for key, value in report.user_properties:
+                if key == "tally":
+                    line, counts = value
+                    totals.setdefault(line, Counter()).update(counts)
+    for line, counts in totals.items():
+        terminalreporter.write_line(line.format_map(counts))

@@ -55,6 +55,6 @@ def root_for(file: Path, package: str) -> Path:
 
 def model_files(path: Path, extensions: tuple[str, ...]) -> list[Path]:
     """Model files below ``path`` (or ``path`` itself), sorted for deterministic output."""
-    if path.is_file():
-        return [path]
+    if path.exists() and not path.is_dir():
+        return [path]  # a file, or something that is not one: reading it reports which
     return sorted(p for p in path.rglob("*") if p.suffix in extensions and p.is_file())

@@ -8,7 +8,7 @@ that searches the whole model for every reference.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields, is_dataclass
 from pathlib import Path
 from typing import Any
 
@@ -84,6 +84,13 @@ class Workspace:
             where = Position(shown, problem.line, problem.column)
             self.diagnostics.error(where, "LR0001", problem.message)
             return None
+        except RecursionError:
+            self.diagnostics.error(deepest(text, shown), "LR0001", TOO_DEEP)
+            return None
+        too_deep = deepest_node(unit)
+        if too_deep is not None:
+            self.diagnostics.error(too_deep, "LR0001", TOO_DEEP)
+            return None
         loaded = Loaded(path, language, unit)
         self.files[path] = loaded
         for name, node in language.declarations(unit):
@@ -92,6 +99,9 @@ class Workspace:
 
     def _read(self, path: Path, shown: str) -> str | None:
         where = Position(shown, 1, 1)
+        if not path.is_file():  # a FIFO or device would block or never end
+            self.diagnostics.error(where, "LR0004", "not a regular file")
+            return None
         try:
             data = self._bytes(path)
         except OSError as error:
@@ -172,8 +182,18 @@ class Workspace:
         if imported.wildcard:
             symbols = self.load_package(imported.name)
             if not symbols:
+                parent = imported.name.rpartition(".")[0]
+                siblings = {
+                    f"{parent}.{child.name}" if parent else child.name
+                    for folder in self.model_path.package_folders(parent)
+                    for child in folder.iterdir()
+                    if child.is_dir()
+                }
                 self.diagnostics.error(
-                    imported.position, "LR0102", f"package '{imported.name}' not found"
+                    imported.position,
+                    "LR0102",
+                    f"package '{imported.name}' not found",
+                    did_you_mean(imported.name, siblings),
                 )
             return symbols
         symbol = self.lookup(imported.name)
@@ -202,3 +222,51 @@ def _shown(path: Path) -> str:
         return str(path.relative_to(Path.cwd()))
     except ValueError:
         return str(path)
+
+
+MAX_DEPTH = 100
+"""Nesting of the syntax tree that later passes (typing, printing, generating) may walk
+recursively without running out of stack."""
+
+TOO_DEEP = (
+    f"nested too deeply (more than {MAX_DEPTH} levels): "
+    "split the expression with intermediate parameters"
+)
+
+
+def deepest_node(root: Any) -> Position | None:
+    """The position of the first node nested deeper than ``MAX_DEPTH``, found without
+    recursion; None when the tree is shallow enough."""
+    pending: list[tuple[Any, int, Position | None]] = [(root, 0, None)]
+    while pending:
+        node, depth, where = pending.pop()
+        if not is_dataclass(node):
+            continue
+        where = getattr(node, "position", where)
+        if depth > MAX_DEPTH:
+            return where
+        for item in fields(node):
+            value = getattr(node, item.name)
+            children = value if isinstance(value, tuple) else (value,)
+            pending.extend((child, depth + 1, where) for child in children)
+    return None
+
+
+def deepest(text: str, shown: str) -> Position:
+    """Where the text nests deepest in brackets, else the start of its longest line: the
+    best pointer to an expression too deep for the parser."""
+    depth, best, where = 0, 0, None
+    line, column = 1, 1
+    for char in text:
+        if char in "([{":
+            depth += 1
+            if depth > best:
+                best, where = depth, (line, column)
+        elif char in ")]}":
+            depth -= 1
+        line, column = (line + 1, 1) if char == "\n" else (line, column + 1)
+    if where is None or best < 8:
+        lines = text.splitlines() or [""]
+        longest = max(range(len(lines)), key=lambda i: len(lines[i]))
+        where = (longest + 1, len(lines[longest]) - len(lines[longest].lstrip()) + 1)
+    return Position(shown, *where)

@@ -20,6 +20,7 @@ from pathlib import Path
 from lightrocks.generators.python import expressions as code
 from lightrocks.generators.python.expressions import CompileError, Scope
 from lightrocks.generators.python.names import alias, identifier, nested
+from lightrocks.languages.domain.ranges import Range, command_ranges
 from lightrocks.languages.domain.types import (
     BOOLEAN,
     FRAME,
@@ -33,6 +34,7 @@ from lightrocks.languages.domain.types import (
 )
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
+from lightrocks.languages.lightrocks.ranges import Flows
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup
@@ -118,6 +120,17 @@ def value_type(t: Type | None) -> tuple:
     return ("other", str(t), ())
 
 
+def _safe_range(safe: Range) -> str | None:
+    """A declared safe range as generated code (``rt.SafeRange``); None when not constant."""
+    bounds = safe.elements()
+    if not bounds:
+        return None
+    shown = _tuple(
+        f"rt.Bound({lo!r}, {hi!r}, {unit!r}, {factor!r})" for lo, hi, unit, factor in bounds
+    )
+    return f"rt.SafeRange({safe.device!r}, {safe.command!r}, {safe.argument!r}, {shown})"
+
+
 def seconds(text: str | None) -> float | None:
     """A ``<<timeout="5 s">>`` value in seconds."""
     if not text:
@@ -136,6 +149,7 @@ class Builder:
 
     def __init__(self, typing: Typing) -> None:
         self.typing = typing
+        self.flows = Flows(typing)
         self.workspace = typing.models.workspace
         self.classes: dict[int, tuple[str, str]] = {}  # id(StateInfo) -> (module, class)
         self.components = sorted(typing.models.components, key=lambda c: c.qualified_name)
@@ -268,6 +282,14 @@ class Builder:
             for name, parameter in region.parameters.items()
         }
         view.constants.append(f"PARAMETER_TYPES: ClassVar[dict[str, tuple]] = {declared_types!r}")
+        reached = {
+            name: _tuple(filter(None, map(_safe_range, ranges)))
+            for name, ranges in self.flows.of(component).items()
+        }
+        mapping = ", ".join(f"{n!r}: {r}" for n, r in reached.items() if r != "()")
+        view.constants.append(
+            f"PARAMETER_RANGES: ClassVar[dict[str, tuple[rt.SafeRange, ...]]] = {{{mapping}}}"
+        )
         scope = Scope(self.typing, region)
         for parameter in region.parameters.values():
             declared = self.typing.types.resolve(region.loaded, parameter.type)
@@ -430,6 +452,10 @@ class Builder:
             f"BUDGET = {budget!r}" if budget is not None else "BUDGET = rt.DEFAULT_BUDGET",
         ]
         view.constants.append(f"SENSORS = {_tuple(repr(s) for s in _sensors(region, scope))}")
+        ranges = {n: _safe_range(r) for n, r in command_ranges(device_name.name, command).items()}
+        mapping = ", ".join(f"{n!r}: {r}" for n, r in ranges.items() if r is not None)
+        if mapping:
+            view.constants.append(f"RANGES: ClassVar[dict[str, rt.SafeRange]] = {{{mapping}}}")
         names = [p.name for p in command.parameters]
         items = [
             f"{(a.name or names[i])!r}: {self._expr(a.value, scope)}"

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from lightrocks.languages.domain.ranges import command_ranges
 from lightrocks.languages.domain.types import (
     BUILTIN_TYPES,
     QuantityT,
@@ -91,27 +92,49 @@ def type_units_known(context: object) -> Iterator[Finding]:
                     yield declaration.position, f"unknown unit '{unit}'", hint
 
 
+def _commands(context: object) -> Iterator[tuple[Loaded, ast.Device, ast.Command]]:
+    for loaded in _domain_units(context):
+        for declaration in loaded.unit.declarations:
+            if isinstance(declaration, ast.Device):
+                for command in declaration.commands:
+                    yield loaded, declaration, command
+
+
 @coco("LR0404", Severity.ERROR, "command defaults and safe ranges fit the parameter type")
 def command_defaults_fit(context: object) -> Iterator[Finding]:
     types = _types(context)
-    for loaded in _domain_units(context):
-        for declaration in loaded.unit.declarations:
-            if not isinstance(declaration, ast.Device):
+    for loaded, _, command in _commands(context):
+        for parameter in command.parameters:
+            declared = types.resolve(loaded, parameter.type)
+            if not isinstance(declared, QuantityT | VectorT):
                 continue
-            for command in declaration.commands:
-                for parameter in command.parameters:
-                    declared = types.resolve(loaded, parameter.type)
-                    if not isinstance(declared, QuantityT | VectorT):
-                        continue
-                    values = (parameter.default, parameter.low, parameter.high)
-                    for value in values:
-                        actual = _literal_type(value)
-                        if actual is not None and not _fits(declared, actual):
-                            yield (
-                                value.position,
-                                f"'{parameter.name}' expects {describe(declared)}",
-                                "",
-                            )
+            for value in (parameter.default, parameter.low, parameter.high):
+                actual = _literal_type(value)
+                if actual is not None and not _fits(declared, actual):
+                    yield value.position, f"'{parameter.name}' expects {describe(declared)}", ""
+
+
+@coco("LR0405", Severity.ERROR, "a command default lies in the command's own safe range")
+def command_defaults_safe(context: object) -> Iterator[Finding]:
+    types = _types(context)
+    for loaded, device, command in _commands(context):
+        ranges = command_ranges(device.name, command)
+        for parameter in command.parameters:
+            if parameter.name not in ranges or not _typed(types, loaded, parameter):
+                continue  # a default of the wrong kind is LR0404's
+            breach = ranges[parameter.name].breach(parameter.default)
+            if breach is not None:
+                yield parameter.default.position, f"default {breach}", ""
+
+
+def _typed(types: Types, loaded: Loaded, parameter: ast.CommandParameter) -> bool:
+    """The parameter has a default and everything of it has the declared type."""
+    declared = types.resolve(loaded, parameter.type)
+    if parameter.default is None or not isinstance(declared, QuantityT | VectorT):
+        return False
+    values = (parameter.default, parameter.low, parameter.high)
+    kinds = [_literal_type(v) for v in values if v is not None]
+    return all(k is not None and _fits(declared, k) for k in kinds)
 
 
 def _literal_type(value: ast.Expression | None) -> QuantityT | VectorT | None:
@@ -134,4 +157,10 @@ def _fits(declared: QuantityT | VectorT, actual: QuantityT | VectorT) -> bool:
     return compatible(declared, actual)
 
 
-COCOS = (domain_types_resolve, unique_members, type_units_known, command_defaults_fit)
+COCOS = (
+    domain_types_resolve,
+    unique_members,
+    type_units_known,
+    command_defaults_fit,
+    command_defaults_safe,
+)

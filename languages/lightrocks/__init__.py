@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from lightrocks.languages.lightrocks.cocos import COCOS
+from lightrocks.languages.lightrocks.cocos_safety import SAFETY_COCOS
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.workbench.languages import Language
@@ -26,6 +27,6 @@ LANGUAGE = Language(
     parse=parse_statechart,
     format=_format,
     declarations=_declarations,
-    cocos=COCOS,
+    cocos=COCOS + SAFETY_COCOS,
     description="tasks, skills and elemental actions as UML/P statecharts",
 )

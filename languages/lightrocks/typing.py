@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from lightrocks.languages.domain.ranges import Range, command_ranges
 from lightrocks.languages.domain.types import (
     ANGLE_T,
     BOOLEAN,
@@ -50,7 +51,8 @@ class Parameterized:
     """Something called with named or positional arguments: a command or a component."""
 
     title: str
-    parameters: list[tuple[str, Type, bool, ast.Expression | None, ast.Expression | None]]
+    parameters: list[tuple[str, Type, bool]]
+    ranges: dict[str, Range] = field(default_factory=dict)
 
 
 class Typing:
@@ -190,7 +192,9 @@ class Typing:
         if not isinstance(callee, CommandT) or callee.command is None:
             self.report("LR0307", call.position, "a do action must call a device command")
             return
-        returns = self.command_signature(callee)
+        owner = call.function.target if isinstance(call.function, ast.Member) else None
+        device = owner.name if isinstance(owner, ast.Name) else callee.name
+        returns = self.command_signature(callee, device)
         self.arguments(call.arguments, returns[0], env, call.position)
         if target is not None:
             if returns[1] is None:
@@ -225,15 +229,16 @@ class Typing:
 
     # -- calls ----------------------------------------------------------------------------
 
-    def command_signature(self, command: CommandT) -> tuple[Parameterized, Type | None]:
+    def command_signature(
+        self, command: CommandT, device: str
+    ) -> tuple[Parameterized, Type | None]:
+        """The command's parameters; ``device`` is the instance called, for its ranges."""
         loaded = self._declaring(command.device)
         parameters = [
             (
                 p.name,
                 self.types.resolve(loaded, p.type) or UNKNOWN,
                 p.default is not None,
-                p.low,
-                p.high,
             )
             for p in command.command.parameters
         ]
@@ -241,7 +246,8 @@ class Typing:
         if command.command.returns:
             returns = self.types.resolve(loaded, command.command.returns) or UNKNOWN
         title = f"command '{command.name}.{command.command.name}'"
-        return Parameterized(title, parameters), returns
+        ranges = command_ranges(device, command.command)
+        return Parameterized(title, parameters, ranges), returns
 
     def component_signature(self, component: Component) -> Parameterized:
         parameters = [
@@ -249,8 +255,6 @@ class Typing:
                 p.name,
                 self.types.resolve(self._loaded_of(component, p), p.type) or UNKNOWN,
                 p.default is not None,
-                None,
-                None,
             )
             for p in component.region.parameters.values()
         ]
@@ -303,7 +307,7 @@ class Typing:
             if name in bound:
                 self.report("LR0301", argument.position, f"parameter '{name}' is given twice")
             bound[name] = argument
-        for name, declared, has_default, low, high in signature.parameters:
+        for name, declared, has_default in signature.parameters:
             argument = bound.get(name)
             if argument is None:
                 if not has_default:
@@ -314,28 +318,13 @@ class Typing:
                     )
                 continue
             self.expect(argument.value, declared, env, f"argument '{name}'")
-            self.in_range(argument.value, low, high, name)
+            if name in signature.ranges:
+                self.in_range(argument.value, signature.ranges[name])
 
-    def in_range(
-        self,
-        value: ast.Expression,
-        low: ast.Expression | None,
-        high: ast.Expression | None,
-        name: str,
-    ) -> None:
-        values, lows, highs = _constants(value), _constants(low), _constants(high)
-        if values is None:
-            return
-        for index, number in enumerate(values):
-            lo = _pick(lows, index)
-            hi = _pick(highs, index)
-            if (lo is not None and number < lo) or (hi is not None and number > hi):
-                self.report(
-                    "LR0305",
-                    value.position,
-                    f"value of '{name}' is outside the safe range the device declares",
-                )
-                return
+    def in_range(self, value: ast.Expression, safe: Range) -> None:
+        breach = safe.breach(value)
+        if breach is not None:
+            self.report("LR0305", value.position, breach)
 
     # -- expressions ----------------------------------------------------------------------
 
@@ -548,19 +537,3 @@ def _is_zero(expression: ast.Expression | None) -> bool:
 
 def _vectors_of_quantities(expected: Type, actual: Type) -> bool:
     return isinstance(expected, VectorT) and isinstance(actual, VectorT)
-
-
-def _constants(expression: ast.Expression | None) -> list[float] | None:
-    if isinstance(expression, ast.Quantity):
-        return [expression.value]
-    if isinstance(expression, ast.VectorLiteral) and all(
-        isinstance(e, ast.Quantity) for e in expression.elements
-    ):
-        return [e.value for e in expression.elements]
-    return None
-
-
-def _pick(values: list[float] | None, index: int) -> float | None:
-    if not values:
-        return None
-    return values[index] if len(values) > 1 and index < len(values) else values[0]

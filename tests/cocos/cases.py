@@ -472,7 +472,20 @@ CASES: list[Case] = [
         bad={
             "actions/Move.lr": replace(MOVE, "arm.move(x = x)", "arm.move(x = x, force = @@100 N)")
         },
-        message="value of 'force' is outside the safe range the device declares",
+        message="arm.move(force) = 100 N is outside its safe range 1 N .. 50 N",
+    ),
+    Case(
+        "LR0305",
+        ok={
+            "actions/Move.lr": replace(MOVE, "arm.move(x = x)", "arm.move(x = x, force = 2 * 20 N)")
+        },
+        bad={
+            "actions/Move.lr": replace(
+                MOVE, "arm.move(x = x)", "arm.move(x = x, force = @@2 * 40 N)"
+            )
+        },
+        message="arm.move(force) = 80 N is outside its safe range 1 N .. 50 N",
+        variant="expression",
     ),
     Case(
         "LR0306",
@@ -563,6 +576,16 @@ import actions.*;
 
 # More failing models for codes with several distinct ways to fail.
 CASES += [
+    Case(
+        "LR0405",
+        ok={},
+        bad={
+            "robots/Devices.lrd": replace(
+                DEVICES, "Force force = 10 N in", "Force force = @@100 N in"
+            )
+        },
+        message="default Arm.move(force) = 100 N is outside its safe range 1 N .. 50 N",
+    ),
     Case(
         "LR0104",
         variant="with-arguments",  # no second finding about the arguments of an unresolved state
@@ -672,3 +695,8 @@ def materialize(root, files: dict[str, str | bytes]) -> tuple[str, int, int] | N
             content = content.replace(MARK, "", 1)
         path.write_text(content, encoding="utf-8")
     return marked
+
+
+from cocos.cases_safety import SAFETY_CASES  # noqa: E402  (its models build on the ones above)
+
+CASES += SAFETY_CASES

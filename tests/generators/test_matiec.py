@@ -96,7 +96,7 @@ def _compile(home: Path, source: Path, model: Path) -> str:
 
 
 @pytest.mark.slow
-def test_every_generated_file_compiles_and_links(home: Path, tmp_path: Path) -> None:
+def test_every_generated_file_compiles_and_links(home: Path, tmp_path: Path, tally) -> None:
     jobs = []
     for case in CASES:
         models = sorted((EXAMPLES / case).rglob("*.lr"))
@@ -109,7 +109,12 @@ def test_every_generated_file_compiles_and_links(home: Path, tmp_path: Path) -> 
         failures = list(pool.map(lambda job: _compile(home, *job), jobs))
     accepted = sum(not f.startswith("iec2c") for f in failures)
     linked = failures.count("")
-    print(f"\nMatIEC accepted {accepted}/{len(jobs)}, gcc compiled and linked {linked}/{len(jobs)}")
+    tally(
+        "MatIEC accepted {accepted}/{files}, gcc compiled and linked {linked}/{files}",
+        accepted=accepted,
+        linked=linked,
+        files=len(jobs),
+    )
     assert linked == len(jobs) >= 16, [f for f in failures if f]
 
 
@@ -128,7 +133,7 @@ def _steps_alike(home: Path, out: Path, scenario: Scenario) -> bool:
 
 
 @pytest.mark.slow
-def test_compiled_program_steps_like_python(home: Path, tmp_path: Path) -> None:
+def test_compiled_program_steps_like_python(home: Path, tmp_path: Path, tally) -> None:
     with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
         alike = list(
             pool.map(
@@ -136,5 +141,9 @@ def test_compiled_program_steps_like_python(home: Path, tmp_path: Path) -> None:
             )
         )
     differing = [s.name for s, same in zip(SCENARIOS, alike, strict=True) if not same]
-    print(f"\n{len(SCENARIOS) - len(differing)}/{len(SCENARIOS)} scenarios step like Python")
+    tally(
+        "{alike}/{scenarios} scenarios step like Python on MatIEC",
+        alike=len(SCENARIOS) - len(differing),
+        scenarios=len(SCENARIOS),
+    )
     assert not differing, f"the compiled program steps differently in: {differing}"

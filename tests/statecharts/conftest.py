@@ -1,4 +1,4 @@
-"""Builds plain charts from text and reports the agreement count of the differential runs."""
+"""Builds plain charts from text for the differential runs."""
 
 from __future__ import annotations
 
@@ -11,7 +11,6 @@ from lightrocks.workbench import report
 from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import all_cocos, check
 
-AGREEMENT = {"sequences": 0, "agree": 0, "documented": 0}
 _counter = itertools.count()
 
 
@@ -31,11 +30,3 @@ def build(tmp_path: Path):
         return component_class(package, f"d.{name}")
 
     return make
-
-
-def pytest_terminal_summary(terminalreporter) -> None:
-    if AGREEMENT["sequences"]:
-        terminalreporter.write_line(
-            "sismic differential: {agree} of {sequences} event sequences agree, "
-            "{documented} differ by a documented design difference".format(**AGREEMENT)
-        )

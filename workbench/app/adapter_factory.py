@@ -9,6 +9,7 @@ from importlib.metadata import entry_points
 from typing import Any
 
 from lightrocks.workbench.app.errors import RunError
+from lightrocks.workbench.app.script import Script
 from lightrocks.workbench.app.values import Noise
 
 
@@ -20,14 +21,18 @@ def adapter_factory(name: str) -> Callable[..., Any]:
 
 
 def adapter_options(
-    name: str | None, seed: int = 0, noise: Noise = (0.0, 0.0), video: str | None = None
+    name: str | None,
+    seed: int = 0,
+    noise: Noise = (0.0, 0.0),
+    video: str | None = None,
+    script: Script | None = None,
 ) -> dict[str, Any]:
     """Keyword arguments for the adapter, read off its signature so that nothing it cannot
     honour (noise, a video) is silently dropped; the seed only matters to adapters that
     draw random numbers."""
     if name is None:
-        if any(noise) or video is not None:
-            raise RunError("perception noise and video need an adapter (--adapter)")
+        if any(noise) or video is not None or script is not None:
+            raise RunError("perception noise, video and script need an adapter (--adapter)")
         return {}
     accepted = inspect.signature(adapter_factory(name)).parameters
     options: dict[str, Any] = {"seed": seed} if "seed" in accepted else {}
@@ -39,11 +44,20 @@ def adapter_options(
         if "video" not in accepted:
             raise RunError(f"adapter '{name}' cannot record a video")
         options["video"] = video
+    if script is not None:
+        if not {"outcomes", "sensors"} <= set(accepted):
+            raise RunError(f"adapter '{name}' cannot follow a script (the dry run can)")
+        options.update(script)
     return options
 
 
 def adapter_for(name: str, scene: str | None, **options: Any) -> Any:
-    return adapter_factory(name)(scene=scene, **options)
+    """The adapter on the model's scene; adapters reject an unknown scene with ValueError."""
+    factory = adapter_factory(name)
+    try:
+        return factory(scene=scene, **options)
+    except ValueError as error:
+        raise RunError(f"adapter '{name}': {error}") from None
 
 
 def scene_of(cls: type) -> str | None:

@@ -7,8 +7,10 @@ import os
 import sys
 from collections.abc import Callable, Sequence
 from importlib.metadata import version
+from importlib.util import find_spec
 from pathlib import Path
 
+import jinja2
 from rich.console import Console
 
 from lightrocks.metamodel.ast import Position
@@ -16,8 +18,8 @@ from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import parsecache, report
 from lightrocks.workbench.app.parsestore import DiskStore
 from lightrocks.workbench.check import all_cocos, check
-from lightrocks.workbench.diagnostics import Diagnostics
-from lightrocks.workbench.files import write_atomic
+from lightrocks.workbench.diagnostics import Diagnostics, Severity
+from lightrocks.workbench.files import write_atomic, write_tree
 from lightrocks.workbench.generators import (
     GenerationError,
     GenerationRequest,
@@ -26,6 +28,7 @@ from lightrocks.workbench.generators import (
 )
 from lightrocks.workbench.languages import extensions, language_for, languages
 from lightrocks.workbench.modelpath import model_files
+from lightrocks.workbench.workspace import TOO_DEEP, deepest
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
 
@@ -79,6 +82,8 @@ def trace_file(path: str | None) -> Path | None:
         raise UsageError(f"--trace: {path} is not a regular file")
     if not trace.parent.is_dir():
         raise UsageError(f"--trace: no such folder: {trace.parent}")
+    if not os.access(trace.parent, os.W_OK):
+        raise UsageError(f"--trace: cannot write to folder {trace.parent}")
     return trace
 
 
@@ -97,6 +102,9 @@ def _configure_check(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("paths", nargs="+", help="model files or folders")
     _path_option(parser)
     parser.add_argument("--format", choices=sorted(report.FORMATS), default="text")
+    parser.add_argument(
+        "--strict", action="store_true", help="warnings fail the check too (exit 1), for CI"
+    )
 
 
 @command(_configure_check)
@@ -106,7 +114,9 @@ def cmd_check(args: argparse.Namespace) -> int:
     output = report.FORMATS[args.format](findings, all_cocos())
     if output:
         print(output)
-    return EXIT_FINDINGS if context.diagnostics.has_errors else EXIT_OK
+    warned = any(d.severity is Severity.WARNING for d in findings)
+    failed = context.diagnostics.has_errors or (args.strict and warned)
+    return EXIT_FINDINGS if failed else EXIT_OK
 
 
 def _configure_fmt(sub: argparse._SubParsersAction) -> None:
@@ -127,6 +137,9 @@ def cmd_fmt(args: argparse.Namespace) -> int:
         language = language_for(file.suffix)
         if language is None:
             raise UsageError(f"not a model file: {file}")
+        if not file.is_file():
+            diagnostics.error(Position(str(file), 1, 1), "LR0004", "not a regular file")
+            continue
         try:
             original[file] = file.read_text(encoding="utf-8")
             formatted[file] = language.format(original[file], str(file))
@@ -134,6 +147,8 @@ def cmd_fmt(args: argparse.Namespace) -> int:
             diagnostics.error(
                 Position(str(file), problem.line, problem.column), "LR0001", problem.message
             )
+        except RecursionError:
+            diagnostics.error(deepest(original[file], str(file)), "LR0001", TOO_DEEP)
         except (UnicodeDecodeError, ValueError):
             diagnostics.error(Position(str(file), 1, 1), "LR0002", "not a text file")
     if diagnostics.has_errors:
@@ -186,8 +201,17 @@ def cmd_generate(args: argparse.Namespace) -> int:
     except GenerationError as error:
         print(f"lightrocks: error: {report.printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS
+    except jinja2.TemplateError as error:
+        raise UsageError(f"template {_template_place(error)}: {error.message}") from None
     print(f"{len(written)} file(s) written to {report.printable(args.output)}")
     return EXIT_OK
+
+
+def _template_place(error: jinja2.TemplateError) -> str:
+    """File and line of a template mistake when jinja2 knows them."""
+    name = getattr(error, "filename", None) or getattr(error, "name", None) or "?"
+    line = getattr(error, "lineno", None)
+    return f"{name}:{line}" if line else name
 
 
 def _option(text: str) -> tuple[str, str]:
@@ -224,6 +248,11 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--video", metavar="FILE", help="record a video (.mp4) or PNG frames")
     parser.add_argument(
+        "--script",
+        metavar="FILE",
+        help="JSON file of scripted outcomes and sensor values for the dry run",
+    )
+    parser.add_argument(
         "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
     )
     _path_option(parser)
@@ -238,11 +267,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.errors import ModelError, RunError
     from lightrocks.workbench.app.loading import load_component
     from lightrocks.workbench.app.run import run_component, success_outcome
+    from lightrocks.workbench.app.script import read_script
     from lightrocks.workbench.app.seeds import run_seeds
 
     model = statechart_file(args.model)
     search_path = existing_paths(args.path)
     trace = trace_file(args.trace)
+    script_file = existing_paths([args.script])[0] if args.script else None
     events = [e.strip() for e in args.events.split(",") if e.strip()]
     if args.seeds is not None and args.seeds < 1:
         raise UsageError("--seeds must be at least 1")
@@ -255,7 +286,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         cls = load_component(model, search_path)
         wanted = success_outcome(cls, args.success)
         values.parameters(cls, args.param)
-        adapter_options(args.adapter, args.seed, noise, args.video)
+        script = read_script(script_file, cls) if script_file else None
+        adapter_options(args.adapter, args.seed, noise, args.video, script)
         if args.seeds is not None:
             seeds = range(args.seed, args.seed + args.seeds)
             many = partial(
@@ -270,6 +302,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 events=events,
                 success=args.success,
                 workers=args.workers,
+                script=script,
             )
             return display.show_seeds(cls.NAME, wanted, len(seeds), many)
         single = partial(
@@ -283,6 +316,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             args.video,
             events=events,
             success=args.success,
+            script=script,
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
@@ -290,6 +324,103 @@ def cmd_run(args: argparse.Namespace) -> int:
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
+    except OSError as error:
+        raise UsageError(f"cannot write {error.filename or 'output'}: {error.strerror}") from None
+
+
+def _configure_sweep(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser(
+        "sweep", help="run every combination of parameters and noise levels over seeds on Dask"
+    )
+    parser.add_argument("model", help="the .lr file of the statechart to run")
+    parser.add_argument("--adapter", help="adapter name (see 'list adapters'); none for plain")
+    parser.add_argument("--seeds", type=int, required=True, metavar="N", help="runs per point")
+    parser.add_argument("--seed", type=int, default=0, help="the first seed (default 0)")
+    parser.add_argument(
+        "--grid",
+        action="append",
+        default=[],
+        metavar="NAME=V1,V2,…",
+        help="values of a parameter to sweep (repeat for more parameters)",
+    )
+    parser.add_argument(
+        "--param", action="append", default=[], metavar="NAME=VALUE", help="fixed parameter value"
+    )
+    parser.add_argument(
+        "--perception-noise",
+        default="0mm,0deg",
+        metavar="L,A[;L,A…]",
+        help="noise levels to sweep, e.g. '0mm,0deg;2mm,2deg;3mm,3deg'",
+    )
+    parser.add_argument(
+        "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
+    )
+    parser.add_argument(
+        "--scheduler", metavar="ADDRESS", help="a running Dask scheduler (default: a local cluster)"
+    )
+    parser.add_argument(
+        "--workers", type=int, metavar="K", help="worker processes of the local cluster"
+    )
+    parser.add_argument(
+        "-o", "--output", default="sweep", help="folder for the tables and the plot (sweep)"
+    )
+    _path_option(parser)
+
+
+@command(_configure_sweep)
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from lightrocks.workbench.app import display, sweep, values
+    from lightrocks.workbench.app.adapter_factory import adapter_options
+    from lightrocks.workbench.app.errors import ModelError, RunError
+    from lightrocks.workbench.app.loading import load_component
+    from lightrocks.workbench.app.run import success_outcome
+
+    missing = [m for m in ("distributed", "pyarrow", "matplotlib") if not find_spec(m)]
+    if missing:
+        raise UsageError(f"sweep needs {', '.join(missing)}: pip install 'lightrocks[sweep]'")
+    model = statechart_file(args.model)
+    search_path = existing_paths(args.path)
+    output = Path(args.output)
+    if output.exists() and not output.is_dir():
+        raise UsageError(f"--output {output} is not a folder")
+    if args.seeds < 1:
+        raise UsageError("--seeds must be at least 1")
+    if args.workers is not None and (args.workers < 1 or args.scheduler is not None):
+        raise UsageError("--workers sizes the local cluster: at least 1, without --scheduler")
+    try:
+        noises = [values.parse_noise(level) for level in args.perception_noise.split(";")]
+        grid = sweep.parse_grid(args.grid)
+        cls = load_component(model, search_path)
+        wanted = success_outcome(cls, args.success)
+        points = sweep.grid_points(grid, noises)
+        for point in points:  # every value is checked before the first run starts
+            values.parameters(cls, [*args.param, *point.params])
+            adapter_options(args.adapter, args.seed, point.noise, None)
+        seeds = range(args.seed, args.seed + args.seeds)
+        with (
+            display.progress_bar(cls.NAME, len(points) * len(seeds)) as advance,
+            sweep.dask_client(args.scheduler, args.workers) as client,
+        ):
+            results = sweep.sweep(
+                client,
+                model,
+                search_path,
+                args.adapter,
+                points,
+                seeds,
+                params=args.param,
+                success=args.success,
+                done=lambda _, result: advance(result.success),
+            )
+        summaries = sweep.summarize(points, results)
+        write_tree(output, sweep.result_files(cls.NAME, summaries, results))
+    except ModelError as error:
+        print(error)
+        return EXIT_FINDINGS
+    except (RunError, GenerationError) as error:
+        raise UsageError(str(error)) from None
+    display.show_sweep(cls.NAME, wanted, sweep.point_rows(summaries), str(output))
+    return EXIT_OK
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:
@@ -342,7 +473,7 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    console = Console(stderr=True, highlight=False)
+    console = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
     parsecache.use_store(DiskStore())  # unchanged files are not parsed again by the next run
     try:
         return COMMANDS[args.command][1](args)

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import math
 import statistics
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from typing import Any
 
 from lightrocks.workbench.app.run import RunResult
@@ -84,15 +85,11 @@ def show(name: str, run: Callable[..., RunResult]) -> int:
     return 0 if result.success else 1
 
 
-def show_seeds(
-    name: str, wanted: str | None, runs: int, run: Callable[..., list[RunResult]]
-) -> int:
-    """Call ``run(done=…)`` with a progress bar on stderr; print a row per seed, the success
-    rate with its 95 % Wilson interval and the spread of the simulated time on stdout.
-    0 when every run ended with the success outcome."""
+@contextmanager
+def progress_bar(name: str, runs: int) -> Iterator[Callable[[bool], None]]:
+    """A progress bar on stderr counting runs and successes; yields ``advance(succeeded)``."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-    from rich.table import Table
 
     columns = (
         TextColumn("{task.description}"),
@@ -102,15 +99,28 @@ def show_seeds(
         TimeElapsedColumn(),
     )
     with Progress(*columns, console=Console(stderr=True, highlight=False)) as bar:
-        task = bar.add_task(name, total=runs, succeeded=0)
+        task = bar.add_task(printable(name), total=runs, succeeded=0)
         succeeded = 0
 
-        def done(result: RunResult) -> None:
+        def advance(success: bool) -> None:
             nonlocal succeeded
-            succeeded += result.success
+            succeeded += success
             bar.update(task, advance=1, succeeded=succeeded)
 
-        results = run(done=done)
+        yield advance
+
+
+def show_seeds(
+    name: str, wanted: str | None, runs: int, run: Callable[..., list[RunResult]]
+) -> int:
+    """Call ``run(done=…)`` with a progress bar on stderr; print a row per seed, the success
+    rate with its 95 % Wilson interval and the spread of the simulated time on stdout.
+    0 when every run ended with the success outcome."""
+    from rich.console import Console
+    from rich.table import Table
+
+    with progress_bar(name, runs) as advance:
+        results = run(done=lambda result: advance(result.success))
     keys = list(dict.fromkeys(k for r in results for k in key_measurements(r.measurements)))
     table = Table(title=f"{name}: {len(results)} runs", title_justify="left")
     table.add_column("seed", justify="right")
@@ -142,3 +152,25 @@ def show_seeds(
         f"min {min(times):.3f} s, max {max(times):.3f} s"
     )
     return 0 if count == len(results) else 1
+
+
+_RATE_COLUMNS = ("runs", "successes", "success_rate", "wilson_low", "wilson_high")
+
+
+def show_sweep(name: str, wanted: str | None, rows: list[dict[str, Any]], output: str) -> None:
+    """The sweep's table on stdout: a row per grid point with its rate and Wilson interval."""
+    from rich.console import Console
+    from rich.table import Table
+
+    label = wanted or "finished without error"
+    table = Table(title=f"{name}: success ({label}) per grid point", title_justify="left")
+    given = [column for column in rows[0] if column not in _RATE_COLUMNS]
+    for column in [*given, "success", "95% Wilson"]:
+        table.add_column(column.replace("_", " "), justify="right")
+    for row in rows:
+        cells = [f"{row[c]:g}" if isinstance(row[c], float) else printable(row[c]) for c in given]
+        rate = f"{row['successes']}/{row['runs']} = {row['success_rate']:.0%}"
+        interval = f"{row['wilson_low']:.0%}–{row['wilson_high']:.0%}"
+        table.add_row(*cells, rate, interval)
+    Console(highlight=False, markup=False).print(table)
+    print(f"results: {printable(output)}")

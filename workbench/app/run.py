@@ -13,6 +13,7 @@ from typing import Any
 from lightrocks.workbench.app.adapter_factory import adapter_for, adapter_options, scene_of
 from lightrocks.workbench.app.errors import RunError
 from lightrocks.workbench.app.loading import load_component
+from lightrocks.workbench.app.script import Script
 from lightrocks.workbench.app.values import Noise, parameters, parse_delay
 
 
@@ -102,6 +103,10 @@ def drive(
                 chart.advance(step)
     finally:
         recorder.close()
+    if recorder.failure is not None:
+        trace.unlink(missing_ok=True)  # never leave a cut-off trace behind
+        reason = recorder.failure.strerror or recorder.failure
+        raise RunError(f"--trace: cannot write {trace}: {reason} (the run went on without it)")
     return chart
 
 
@@ -132,12 +137,13 @@ def run_component(
     events: Sequence[str] = (),
     success: str | None = None,
     progress: Callable[[dict[str, Any]], None] | None = None,
+    script: Script | None = None,
 ) -> RunResult:
     """One run of a loaded chart; the measurements are read before the adapter is closed,
     because closing ends its simulation."""
     wanted = success_outcome(cls, success)
     values = parameters(cls, params)
-    options = adapter_options(adapter, seed, noise, video)
+    options = adapter_options(adapter, seed, noise, video, script)
     device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
     try:
         chart = drive(cls, values, device, events, trace, progress)
@@ -173,10 +179,20 @@ def run_once(
     *,
     events: Sequence[str] = (),
     success: str | None = None,
+    script: Script | None = None,
 ) -> RunResult:
     """One run from picklable inputs only, so that a worker process can do it on its own:
     the generated code is imported again from the cache, never pickled."""
     cls = load_component(model, search_path)
     return run_component(
-        cls, params, adapter, seed, noise, trace, video, events=events, success=success
+        cls,
+        params,
+        adapter,
+        seed,
+        noise,
+        trace,
+        video,
+        events=events,
+        success=success,
+        script=script,
     )

@@ -11,6 +11,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 from lightrocks.workbench.app.run import RunResult, run_once
+from lightrocks.workbench.app.script import Script
 from lightrocks.workbench.app.values import Noise
 
 
@@ -37,6 +38,7 @@ def run_seeds(
     success: str | None = None,
     workers: int | None = None,
     done: Callable[[RunResult], None] | None = None,
+    script: Script | None = None,
 ) -> list[RunResult]:
     """``run_once`` per seed in worker processes (default: one per core); results in seed
     order, ``done`` is called in this process as each run ends.
@@ -61,6 +63,7 @@ def run_seeds(
                 seed_trace(trace, seed),
                 events=list(events),
                 success=success,
+                script=script,
             )
             for seed in seeds
         ]

@@ -173,7 +173,8 @@ def parse_noise(text: str) -> Noise:
 
 
 def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
-    """``name=value`` pairs to Python attributes of the component, checked by name."""
+    """``name=value`` pairs to Python attributes of the component, checked by name, declared
+    type and the safe range of every command argument the parameter reaches."""
     bound = {}
     for item in given:
         name, separator, text = item.partition("=")
@@ -185,5 +186,13 @@ def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
         name = name.strip()
         declared = getattr(cls, "PARAMETER_TYPES", {}).get(name)
         value = typed_value(name, text.strip(), declared) if declared else parse_value(text)
+        for safe in getattr(cls, "PARAMETER_RANGES", {}).get(name, ()):
+            breach = safe.breach(value)
+            if breach is not None:
+                expected = f"{_expected(declared)} " if declared else ""
+                raise RunError(
+                    f"--param {name}={text.strip()}: {name} expects {expected}within the "
+                    f"safe range of the command it reaches; {breach}"
+                )
         bound[cls.PARAMETERS[name]] = value
     return bound
