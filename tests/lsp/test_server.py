@@ -212,7 +212,7 @@ async def test_hover_shows_units_signatures_and_imported_outcomes(
 
 
 @pytest.mark.asyncio
-async def test_outline_nests_states_below_their_chart(
+async def test_outline_nests_states_below_their_chart_and_composite_states(
     client: LanguageClient, examples: Path
 ) -> None:
     uri = await open_file(client, examples / "plain" / "Turnstile.lr")
@@ -220,8 +220,9 @@ async def test_outline_nests_states_below_their_chart(
         lsp.DocumentSymbolParams(document(uri))
     )
     assert chart.name == "Turnstile"
-    states = {s.name for s in chart.children if s.kind == lsp.SymbolKind.EnumMember}
-    assert {"Operating", "Maintenance", "Off", "Locked", "Unlocked"} <= states
+    states = {s.name: s for s in chart.children if s.kind == lsp.SymbolKind.EnumMember}
+    assert set(states) == {"Operating", "Maintenance", "Off"}
+    assert {s.name for s in states["Operating"].children} == {"Locked", "Unlocked"}
 
 
 @pytest.mark.asyncio

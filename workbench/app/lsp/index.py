@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections import ChainMap
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field, fields, is_dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -49,6 +50,7 @@ class FileIndex:
     names: dict[str, str] = field(default_factory=dict)  # visible name -> kind
     outcomes: dict[str, tuple[str, ...]] = field(default_factory=dict)  # state -> outcomes
     members: dict[str, dict[str, str]] = field(default_factory=dict)  # instance -> member kinds
+    outline: dict[Key | None, list[Key]] = field(default_factory=dict)  # declarations by parent
 
 
 BUILTIN_OUTCOMES = ("error", "timeout", "preempted")
@@ -91,6 +93,7 @@ class _Builder:
         self.index = FileIndex()
         self.declared: dict[Key, Declared] = {}
         self.members: dict[str, dict[str, tuple[Key, str, Any, Loaded]]] = {}
+        self.parent: Key | None = None  # the declaration enclosing the ones declared now
 
     # -- keys -----------------------------------------------------------------------------
 
@@ -104,7 +107,14 @@ class _Builder:
         key, found = self.key(self.loaded, node, name)
         self.index.occurrences.append(Occurrence(self.loaded.path, found, name, kind, key, True))
         self.declared[key] = Declared(kind, node, self.loaded)
+        self.index.outline.setdefault(self.parent, []).append(key)
         return key
+
+    def inside(self, parent: Key, walk: Callable[[], None]) -> None:
+        """Run ``walk`` with its declarations nested below ``parent`` in the outline."""
+        outer, self.parent = self.parent, parent
+        walk()
+        self.parent = outer
 
     def refer(self, position: ast.Position, name: str, kind: str, key: Key | None) -> None:
         if key is None or position.line <= 0:
@@ -148,13 +158,13 @@ class _Builder:
         return self.index
 
     def statechart(self, chart: ast.Statechart) -> None:
-        self.declare(chart, "statechart")
+        key = self.declare(chart, "statechart")
         inherited: dict[str, tuple[Key, str]] = {}
         base = self.stereotype_target(chart.stereotypes, "extends")
         if base is not None and isinstance(base[0], ast.Statechart):
             inherited = self.foreign_scope(base[1], base[0].elements)
         values: ChainMap[str, tuple[Key, str]] = ChainMap(self.cell_scope())
-        self.region(chart.elements, ChainMap(inherited), values)
+        self.inside(key, lambda: self.region(chart.elements, ChainMap(inherited), values))
 
     def stereotype_target(
         self, stereotypes: Iterable[ast.Stereotype], *names: str
@@ -210,8 +220,9 @@ class _Builder:
         elements = list(_flatten(elements))
         states, values = states.new_child(), values.new_child()
         imported: dict[str, tuple[Any, Loaded]] = {}
+        keys: dict[int, Key] = {}
         for element, kind in _declarations(elements):
-            key = self.declare(element, kind)
+            key = keys[id(element)] = self.declare(element, kind)
             (values if kind == "parameter" else states)[element.name] = (key, kind)
             self.index.names[element.name] = kind
             if isinstance(element, ast.State):
@@ -223,7 +234,9 @@ class _Builder:
                 self.refer_symbol(element.position, element.type)
                 self.expressions(element.default, values)
             elif isinstance(element, ast.State):
-                self.state(element, imported.get(element.name), states, values)
+                target = imported.get(element.name)
+                walk = partial(self.state, element, target, states, values)
+                self.inside(keys[id(element)], walk)
             elif isinstance(element, ast.Transition):
                 self.transition(element, imported, states, values)
             elif not isinstance(element, ast.Condition | ast.Pseudostate | ast.Event):
@@ -320,21 +333,24 @@ class _Builder:
     # -- domain models --------------------------------------------------------------------
 
     def domain(self, declaration: Any) -> None:
-        self.declare(declaration, _KINDS.get(type(declaration), "type"))
+        key = self.declare(declaration, _KINDS.get(type(declaration), "type"))
+        self.inside(key, partial(self.domain_members, declaration))
+
+    def domain_members(self, declaration: Any) -> None:
         if isinstance(declaration, ast.VectorType) and declaration.element_type:
             self.refer_symbol(declaration.position, declaration.element_type)
         for member in getattr(declaration, "members", getattr(declaration, "fields", ())):
-            self.declare(member, _KINDS.get(type(member), "field"))
-            if hasattr(member, "type"):
-                self.refer_symbol(member.position, member.type)
-            for parameter in getattr(member, "parameters", ()):
-                self.declare(parameter, "parameter")
-                self.refer_symbol(parameter.position, parameter.type)
-            for attribute in getattr(member, "attributes", ()):
-                self.declare(attribute, "parameter")
-                self.refer_symbol(attribute.position, attribute.type)
-            if getattr(member, "returns", ""):
-                self.refer_symbol(member.position, member.returns)
+            key = self.declare(member, _KINDS.get(type(member), "field"))
+            self.inside(key, partial(self.member_parameters, member))
+
+    def member_parameters(self, member: Any) -> None:
+        if hasattr(member, "type"):
+            self.refer_symbol(member.position, member.type)
+        for parameter in (*getattr(member, "parameters", ()), *getattr(member, "attributes", ())):
+            self.declare(parameter, "parameter")
+            self.refer_symbol(parameter.position, parameter.type)
+        if getattr(member, "returns", ""):
+            self.refer_symbol(member.position, member.returns)
 
 
 _KINDS = {

@@ -8,7 +8,7 @@ from pathlib import Path
 from lsprotocol import types as lsp
 from pygls.uris import from_fs_path
 
-from lightrocks.workbench.app.lsp.index import FileIndex, Index, Occurrence
+from lightrocks.workbench.app.lsp.index import FileIndex, Index, Key, Occurrence
 from lightrocks.workbench.app.lsp.text import Text
 
 IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -112,24 +112,23 @@ def rename(
 
 
 def document_symbols(file: FileIndex) -> list[lsp.DocumentSymbol]:
-    """The declarations of a file; each nested under the last one whose line range holds it.
+    """The declarations of a file, nested as they are in the model."""
+    declared = {o.key: o for o in file.occurrences if o.declaration}
 
-    Statecharts, states, devices and cells span to the next declaration of their level, so
-    the outline nests states below their chart and below their composite state by order."""
-    symbols: list[lsp.DocumentSymbol] = []
-    for occurrence in (o for o in file.occurrences if o.declaration):
-        symbol = lsp.DocumentSymbol(
-            name=occurrence.name,
-            kind=SYMBOL_KINDS.get(occurrence.kind, lsp.SymbolKind.Variable),
-            range=occurrence.range,
-            selection_range=occurrence.range,
-            children=[],
-        )
-        if occurrence.kind in ("statechart", "device", "cell", "type") or not symbols:
-            symbols.append(symbol)
-        else:
-            symbols[-1].children.append(symbol)
-    return symbols
+    def symbols(parent: Key | None) -> list[lsp.DocumentSymbol]:
+        return [
+            lsp.DocumentSymbol(
+                name=declared[key].name,
+                kind=SYMBOL_KINDS.get(declared[key].kind, lsp.SymbolKind.Variable),
+                range=declared[key].range,
+                selection_range=declared[key].range,
+                children=symbols(key),
+            )
+            for key in file.outline.get(parent, ())
+            if key in declared and key != parent
+        ]
+
+    return symbols(None)
 
 
 def semantic_tokens(file: FileIndex | None, text: Text) -> lsp.SemanticTokens:
