@@ -285,6 +285,8 @@ class SimulatedCell:
         self.noise = (float(perception_noise[0]), float(perception_noise[1]))
         self.rng = np.random.default_rng(seed)
         self.recorder = None if video is None else VideoRecorder(video, self.plant.model)
+        self.video_written = ""
+        """Where the video's frames went, once the cell is closed."""
         self.arm = ArmState(load_robot())
         self.wrist = self._make_wrist_sensor()
         self.time = 0.0
@@ -368,6 +370,7 @@ class SimulatedCell:
     def close(self) -> None:
         if self.recorder is not None:
             self.recorder.close()
+            self.video_written = self.recorder.written()
             self.recorder = None
 
     # -- ground truth -------------------------------------------------------------------------

@@ -53,7 +53,8 @@ def _mp4_writer(path: str) -> Any:
         return None
     import imageio
 
-    return imageio.get_writer(path, fps=FPS)
+    # H.264 needs even sides only; imageio's default blocks of 16 would stretch 360 to 368
+    return imageio.get_writer(path, fps=FPS, macro_block_size=8)
 
 
 class VideoRecorder:
@@ -74,6 +75,7 @@ class VideoRecorder:
         self._camera.distance, self._camera.azimuth = DISTANCE, AZIMUTH
         self._camera.elevation = ELEVATION
         path = os.fspath(path)
+        self.path = path
         self._writer = _mp4_writer(path)
         self.folder = None if self._writer else Path(path.removesuffix(".mp4"))
         if self.folder is not None:
@@ -99,3 +101,12 @@ class VideoRecorder:
         if self._writer is not None:
             self._writer.close()
         self._renderer.close()
+
+    def written(self) -> str:
+        """Where the frames went, for the user; why they are no MP4 when one was asked for."""
+        if self.folder is None:
+            return f"video: {self.path} ({self.frames} frames at {FPS:g} fps)"
+        told = f"video: {self.frames} PNG frames in {self.folder}{os.sep}"
+        if self.path.endswith(".mp4"):
+            told += " (an MP4 needs imageio and imageio-ffmpeg: pip install 'lightrocks[video]')"
+        return told

@@ -31,7 +31,7 @@ def timed_sweep(workers: int, adapter: str, seeds: range) -> tuple[float, list]:
         LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
-            dashboard_address=None,
+            dashboard_address=":0",  # any free port: several clusters may run at once
             silence_logs=logging.ERROR,
         ) as cluster,
         Client(cluster) as client,

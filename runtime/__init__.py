@@ -16,7 +16,14 @@ from lightrocks.runtime.contract import (
     Wrench,
 )
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
-from lightrocks.runtime.executor import ERROR, PREEMPTED, Executor, Fault, UnknownEvent
+from lightrocks.runtime.executor import (
+    ERROR,
+    PREEMPTED,
+    Abort,
+    Executor,
+    Fault,
+    UnknownEvent,
+)
 from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
 from lightrocks.runtime.safety import Bound, SafeRange
 from lightrocks.runtime.states import (
@@ -38,6 +45,7 @@ __all__ = [
     "ERROR",
     "PREEMPTED",
     "TIMEOUT",
+    "Abort",
     "Action",
     "ActionComponent",
     "Adapter",

@@ -28,6 +28,12 @@ EVENT_STOP, TIMER_STOP = "@event", "@timer"
 Timer = tuple[State, Transition]  # a time event of an active state, pending
 
 
+class Abort(KeyboardInterrupt):
+    """Raised on the run's thread (by a stop condition or a trace listener) to stop the run
+    safely from outside: the arm holds, no exit action runs, the outcome is ``preempted``.
+    A kind of Ctrl-C, so that every handler lets it through as it does Ctrl-C."""
+
+
 class UnknownEvent(ValueError):
     """An event that no transition of the statechart names and no declaration lists."""
 
@@ -186,6 +192,8 @@ class Executor:
                         continue
                 if done is None:
                     return
+        except Abort:
+            self._stop_safely()
         except KeyboardInterrupt:
             self._interrupt()
             raise
@@ -227,6 +235,15 @@ class Executor:
         self.finished, self.outcome = True, INTERRUPTED
         self._hold()
         self._record(INTERRUPTED, active=active)
+
+    def _stop_safely(self) -> None:
+        """An ``Abort``: the arm holds; the trace ends with ``aborted`` (the states that were
+        active) and ``finished`` with ``preempted``."""
+        active = [state.path for state in self.active()]
+        self.finished, self.outcome = True, PREEMPTED
+        self._hold()
+        self._record("aborted", active=active)
+        self._record("finished", outcome=PREEMPTED)
 
     def _record(self, kind: str, **fields: Any) -> None:
         """Write a closing record even when the adapter's clock fails (last known time)."""

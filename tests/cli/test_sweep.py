@@ -50,7 +50,7 @@ def client():
         LocalCluster(
             n_workers=2,
             threads_per_worker=1,
-            dashboard_address=None,
+            dashboard_address=":0",  # any free port: several clusters may run at once
             silence_logs=logging.ERROR,
         ) as cluster,
         Client(cluster) as client,

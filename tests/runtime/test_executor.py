@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
-from lightrocks.runtime import BindingError, UnknownEvent
+from lightrocks.runtime import Abort, BindingError, Trace, UnknownEvent
 
 
 def kinds(chart, *wanted: str) -> list[tuple[str, str]]:
@@ -100,6 +100,23 @@ def test_enclosing_end_condition_preempts_and_holds_the_command(build):
     assert adapter.holds == 1
     assert ("outcome", "Guarded/M:preempted") in kinds(chart, "outcome")
     assert chart.trace[-1]["time"] == pytest.approx(0.06)
+
+
+def test_abort_stops_the_command_holds_and_ends_preempted(build):
+    def stop_in_b(record):
+        if record["kind"] == "command" and record["state"] == "Seq/B":
+            raise Abort
+
+    trace = Trace()
+    trace.listeners.append(stop_in_b)
+    chart = build({"Seq": SEQ}, "Seq")().start(adapter := DryRunAdapter(), trace=trace)
+    assert chart.finished and chart.outcome == "preempted"
+    assert adapter.holds == 1
+    assert len(adapter.calls) == 1, "the second command ran"
+    assert [r["kind"] for r in chart.trace[-3:]] == ["command", "aborted", "finished"]
+    assert chart.trace[-2]["active"] == ["Seq", "Seq/B"]
+    assert not kinds(chart, "error")
+    assert ("exit", "Seq/B") not in kinds(chart, "exit"), "an exit action ran"
 
 
 def test_timeout_is_an_outcome_that_can_be_handled(build):

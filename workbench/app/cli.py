@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
 from collections.abc import Callable, Sequence
 from importlib.metadata import version
 from importlib.util import find_spec
 from pathlib import Path
+from typing import Any
 
 import jinja2
 from rich.console import Console
@@ -255,6 +257,28 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
     )
+    parser.add_argument(
+        "--monitor", metavar="[HOST:]PORT", help="serve a live page of the run (host 127.0.0.1)"
+    )
+    parser.add_argument(
+        "--break",
+        dest="breakpoints",
+        action="append",
+        default=[],
+        metavar="Q.NAME",
+        help="pause on entering this state (with --monitor); repeatable",
+    )
+    parser.add_argument(
+        "--paused", action="store_true", help="wait for Resume or Step on the page (--monitor)"
+    )
+    parser.add_argument(
+        "--abort-at",
+        dest="aborts",
+        action="append",
+        default=[],
+        metavar="Q.NAME",
+        help="abort safely on entering this state (with --monitor); repeatable",
+    )
     _path_option(parser)
 
 
@@ -266,7 +290,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.adapter_factory import adapter_options
     from lightrocks.workbench.app.errors import ModelError, RunError
     from lightrocks.workbench.app.loading import load_component
-    from lightrocks.workbench.app.run import run_component, success_outcome
+    from lightrocks.workbench.app.run import run_component, run_header, success_outcome
     from lightrocks.workbench.app.script import read_script
     from lightrocks.workbench.app.seeds import run_seeds
 
@@ -281,6 +305,10 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--workers needs --seeds and must be at least 1")
     if args.seeds is not None and args.video:
         raise UsageError("--video records a single run: leave out --seeds")
+    if (args.breakpoints or args.paused or args.aborts) and not args.monitor:
+        raise UsageError("--break, --abort-at and --paused need --monitor")
+    if args.monitor and args.seeds is not None:
+        raise UsageError("--monitor watches a single run: leave out --seeds")
     try:
         noise = values.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
         cls = load_component(model, search_path)
@@ -305,6 +333,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 script=script,
             )
             return display.show_seeds(cls.NAME, wanted, len(seeds), many)
+        watch = _monitor(args, model, search_path, cls.NAME) if args.monitor else None
         single = partial(
             run_component,
             cls,
@@ -317,6 +346,8 @@ def cmd_run(args: argparse.Namespace) -> int:
             events=events,
             success=args.success,
             script=script,
+            watch=watch,
+            header=run_header(model, search_path),
         )
         return display.show(cls.NAME, single)
     except ModelError as error:
@@ -420,6 +451,107 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
     display.show_sweep(cls.NAME, wanted, sweep.point_rows(summaries), str(output))
+    return EXIT_OK
+
+
+def _monitor(args: argparse.Namespace, model: Path, search_path: list[Path], name: str) -> Any:
+    """Start the page's server and tell where it is; the watch that feeds and controls it."""
+    from lightrocks.workbench.app.monitor.watch import monitor_for
+
+    address = _monitor_address(args.monitor)
+    monitor, watch = monitor_for(
+        model, search_path, name, args.breakpoints, args.paused, args.aborts
+    )
+    _serve(monitor, address)
+    return watch
+
+
+def _monitor_address(text: str) -> tuple[str, int]:
+    from lightrocks.workbench.app.monitor.server import parse_address
+
+    if any(find_spec(m) is None for m in ("starlette", "uvicorn", "websockets")):
+        raise UsageError("--monitor needs its web server: pip install 'lightrocks[monitor]'")
+    try:
+        return parse_address(text)
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+
+
+def _serve(monitor: Any, address: tuple[str, int]) -> None:
+    try:
+        url = monitor.serve(*address)
+    except OSError as error:
+        raise UsageError(str(error)) from None
+    print(f"monitor: {url}", file=sys.stderr, flush=True)
+
+
+def _configure_replay(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("replay", help="replay a recorded run in the monitor page")
+    parser.add_argument("trace", help="a trace written by 'run --trace'")
+    parser.add_argument(
+        "--monitor", required=True, metavar="[HOST:]PORT", help="serve the page (host 127.0.0.1)"
+    )
+    parser.add_argument("--model", help="the .lr file the run ran (default: named in the trace)")
+    _path_option(parser)
+
+
+@command(_configure_replay)
+def cmd_replay(args: argparse.Namespace) -> int:
+    """Serve the page with a time slider over the recorded run until Ctrl-C."""
+    import threading
+
+    from lightrocks.workbench.app.monitor.traces import TraceError, header, read_trace, task_name
+    from lightrocks.workbench.app.monitor.watch import replay_for
+
+    trace = existing_paths([args.trace])[0]
+    address = _monitor_address(args.monitor)
+    try:
+        records = read_trace(trace)
+        name = task_name(records)
+    except TraceError as error:
+        print(f"lightrocks: error: {error}", file=sys.stderr)
+        return EXIT_FINDINGS
+    named, named_path = header(records)
+    if args.model is None and named is None:
+        raise UsageError(f"{trace} names no model (an older trace): give --model")
+    model = statechart_file(args.model or str(named))
+    search_path = existing_paths(args.path) if args.model else existing_paths(named_path)
+    try:
+        monitor = replay_for(model, search_path, name, records)
+    except GenerationError as error:
+        raise UsageError(str(error)) from None
+    _serve(monitor, address)
+    print(f"replaying {trace} ({records[-1]['time']:.3f} s); Ctrl-C ends", file=sys.stderr)
+    with contextlib.suppress(KeyboardInterrupt):
+        threading.Event().wait()
+    return EXIT_OK
+
+
+def _configure_plot(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("plot", help="plot force, torque and TCP of a recorded trace")
+    parser.add_argument("trace", help="a trace written by 'run --trace'")
+    parser.add_argument("-o", "--output", required=True, help="FILE.png or FILE.html")
+
+
+@command(_configure_plot)
+def cmd_plot(args: argparse.Namespace) -> int:
+    from lightrocks.workbench.app.monitor.plot import FORMATS, plot
+    from lightrocks.workbench.app.monitor.traces import TraceError
+
+    if find_spec("matplotlib") is None:
+        raise UsageError("plot needs matplotlib: pip install 'lightrocks[plot]'")
+    trace = existing_paths([args.trace])[0]
+    output = Path(args.output)
+    if output.suffix not in FORMATS:
+        raise UsageError(f"-o must end in {' or '.join(FORMATS)}: {output}")
+    if not output.parent.is_dir():
+        raise UsageError(f"-o: no such folder: {output.parent}")
+    try:
+        recorded = plot(trace, output)
+    except TraceError as error:
+        print(f"lightrocks: error: {error}", file=sys.stderr)
+        return EXIT_FINDINGS
+    print(f"{output} written: {len(recorded.times)} samples, outcome {recorded.outcome}")
     return EXIT_OK
 
 

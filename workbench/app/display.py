@@ -82,6 +82,8 @@ def show(name: str, run: Callable[..., RunResult]) -> int:
         print("active: " + " / ".join(result.active))
     if result.fault:
         print(f"error: {printable(result.fault)}")
+    if result.video:
+        print(printable(result.video))
     return 0 if result.success else 1
 
 

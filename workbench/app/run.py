@@ -5,7 +5,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -64,6 +64,8 @@ def drive(
     events: Sequence[str],
     trace: Path | None,
     progress: Callable[[dict[str, Any]], None] | None = None,
+    watch: Any = None,
+    header: Mapping[str, Any] | None = None,
 ) -> Any:
     """Create, bind and run the chart; send the events once it rests.
 
@@ -72,6 +74,7 @@ def drive(
     """
     from lightrocks.runtime import BindingError, Trace
     from lightrocks.runtime.binding import bind
+    from lightrocks.workbench.app.monitor.sampling import SampledAdapter
 
     chart = cls(**params)
     steps = [parse_delay(e) if e.startswith("+") else e for e in events]
@@ -90,8 +93,14 @@ def drive(
         recorder = Trace(trace)
     except OSError as error:
         raise RunError(f"--trace: cannot write {trace}: {error.strerror or error}") from None
+    if header:
+        recorder.write(0.0, "run", **header)
     if progress is not None:
         recorder.listeners.append(progress)
+    if watch is not None:
+        watch.attach(recorder)
+    if adapter is not None:
+        adapter = SampledAdapter(adapter, recorder, None if watch is None else watch.on_tick)
     try:
         chart.start(adapter, trace=recorder)
         for step in steps:
@@ -123,6 +132,8 @@ class RunResult:
     fault: str
     active: tuple[str, ...]
     """The active configuration when the run did not finish."""
+    video: str = ""
+    """Where the adapter's video went."""
 
 
 def run_component(
@@ -138,6 +149,8 @@ def run_component(
     success: str | None = None,
     progress: Callable[[dict[str, Any]], None] | None = None,
     script: Script | None = None,
+    watch: Any = None,
+    header: Mapping[str, Any] | None = None,
 ) -> RunResult:
     """One run of a loaded chart; the measurements are read before the adapter is closed,
     because closing ends its simulation."""
@@ -146,13 +159,16 @@ def run_component(
     options = adapter_options(adapter, seed, noise, video, script)
     device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
     try:
-        chart = drive(cls, values, device, events, trace, progress)
+        chart = drive(cls, values, device, events, trace, progress, watch, header)
         measure = getattr(device, "measurements", None)
         measured = dict(measure()) if measure is not None else {}
+        if watch is not None:
+            watch.finish(measured)
     finally:
         if device is not None:
             device.close()
     summary = summarize(chart)
+    video_written = getattr(device, "video_written", "")
     # a plain chart without final state succeeds by resting without error
     succeeded = summary.outcome != "error" if wanted is None else summary.outcome == wanted
     return RunResult(
@@ -164,6 +180,7 @@ def run_component(
         measured,
         summary.fault,
         () if chart.finished else chart.active_configuration,
+        video_written,
     )
 
 
@@ -195,4 +212,10 @@ def run_once(
         events=events,
         success=success,
         script=script,
+        header=run_header(model, search_path),
     )
+
+
+def run_header(model: Path, search_path: Sequence[Path]) -> dict[str, Any]:
+    """The first record of a trace file: the model it ran, so that a replay can draw it."""
+    return {"model": str(model.resolve()), "path": [str(p.resolve()) for p in search_path]}

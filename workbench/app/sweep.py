@@ -107,7 +107,7 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
                     n_workers=workers,
                     threads_per_worker=1,
                     processes=True,
-                    dashboard_address=None,
+                    dashboard_address=":0",  # any free port: several clusters may run at once
                     silence_logs=logging.ERROR,
                 )
                 stack.enter_context(cluster)

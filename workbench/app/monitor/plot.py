@@ -1,0 +1,168 @@
+"""Plots of a recorded trace: force, torque and TCP over time, the spans of skills and
+actions shaded, the outcome marked; a PNG, or one HTML file with the figure inlined as SVG."""
+
+from __future__ import annotations
+
+import html
+import io
+import itertools
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from lightrocks.workbench.app.monitor.traces import read_trace
+
+FORMATS = (".png", ".html")
+LAYERS = ("skill", "action")
+SIZE, DPI = (11, 8), 100
+"""The figure in inches and the PNG's pixels per inch: 1100 x 800 pixels."""
+
+
+@dataclass
+class Span:
+    name: str
+    layer: str
+    start: float
+    end: float
+
+
+@dataclass
+class Recording:
+    """What a plot shows, read off the trace."""
+
+    times: list[float] = field(default_factory=list)
+    force: list[list[float]] = field(default_factory=list)
+    torque: list[list[float]] = field(default_factory=list)
+    tcp: list[list[float]] = field(default_factory=list)
+    spans: list[Span] = field(default_factory=list)
+    outcome: str | None = None
+    end: float = 0.0
+
+
+def recording(records: list[dict[str, Any]]) -> Recording:
+    result = Recording()
+    entered: dict[str, tuple[str, float]] = {}
+    for record in records:
+        time, kind = float(record["time"]), record["kind"]
+        result.end = max(result.end, time)
+        if kind == "sample":
+            wrench = next((v for k, v in record.items() if k.endswith(".wrench")), None)
+            tcp = next((v for k, v in record.items() if k.endswith(".tcp")), None)
+            if wrench is not None and tcp is not None:
+                result.times.append(time)
+                result.force.append(wrench["force"])
+                result.torque.append(wrench["torque"])
+                result.tcp.append(tcp)
+        elif kind == "enter" and record.get("layer") in LAYERS:
+            entered[record["state"]] = (record["layer"], time)
+        elif kind == "exit" and record["state"] in entered:
+            layer, start = entered.pop(record["state"])
+            result.spans.append(Span(record["state"], layer, start, time))
+        elif kind == "finished":
+            result.outcome = record.get("outcome")
+    for state, (layer, start) in entered.items():
+        result.spans.append(Span(state, layer, start, result.end))
+    return result
+
+
+def figure(rec: Recording, title: str) -> Any:
+    """The figure: one row each for force, torque and TCP, sharing the time axis."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=SIZE, layout="constrained")
+    axes = fig.subplots(3, 1, sharex=True)
+    rows = (
+        ("force [N]", rec.force, 1.0),
+        ("torque [Nm]", rec.torque, 1.0),
+        ("TCP [mm]", rec.tcp, 1000.0),
+    )
+    colours = matplotlib.colormaps["tab10"]
+    skills = [s for s in rec.spans if s.layer == "skill"]
+    for ax, (label, values, scale) in zip(axes, rows, strict=True):
+        for i, span in enumerate(skills):
+            ax.axvspan(span.start, span.end, color=colours(i % 10), alpha=0.12, lw=0)
+        actions = [s for s in rec.spans if s.layer == "action"]
+        for span, grey in zip(actions, itertools.cycle(("0.3", "0.65")), strict=False):
+            ax.axvspan(span.start, span.end, ymin=0, ymax=0.04, color=grey, lw=0)
+        for axis, name in enumerate("xyz"):
+            ax.plot(rec.times, [v[axis] * scale for v in values], lw=1, label=name)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.legend(loc="upper right", fontsize="small")
+        if rec.outcome is not None:
+            ax.axvline(rec.end, color="k", ls="--", lw=1)
+    for i, span in enumerate(skills):
+        axes[0].annotate(
+            span.name.rsplit("/", 1)[-1],
+            ((span.start + span.end) / 2, 1.0),
+            xycoords=("data", "axes fraction"),
+            ha="center",
+            va="bottom",
+            fontsize="small",
+            color=colours(i % 10),
+        )
+    if rec.outcome is not None:
+        axes[2].annotate(
+            f"outcome: {rec.outcome}",
+            (rec.end, 0.02),
+            xycoords=("data", "axes fraction"),
+            ha="right",
+            va="bottom",
+            fontsize="small",
+        )
+    axes[-1].set_xlabel("simulated time [s]")
+    fig.suptitle(title)
+    return fig
+
+
+def series(rec: Recording) -> str:
+    """The plotted samples as JSON, safe inside a script element, for whoever reads on."""
+    data = {"time": rec.times, "force": rec.force, "torque": rec.torque, "tcp": rec.tcp}
+    return json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+
+
+def page(rec: Recording, title: str, svg: str) -> str:
+    """One HTML file: the figure inline, its samples as data and the spans as a table;
+    nothing is fetched."""
+    rows = "\n".join(
+        f"<tr><td>{html.escape(s.layer)}</td><td>{html.escape(s.name)}</td>"
+        f"<td>{s.start:.3f}</td><td>{s.end:.3f}</td></tr>"
+        for s in rec.spans
+    )
+    outcome = html.escape(rec.outcome or "unfinished")
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>
+<style>body{{font-family:sans-serif;margin:1em}}table{{border-collapse:collapse}}
+td,th{{border:1px solid #ccc;padding:2px 8px;text-align:left}}</style></head>
+<body><h1>{html.escape(title)}</h1>
+<p>Outcome: <strong id="outcome">{outcome}</strong> at {rec.end:.3f} s;
+{len(rec.times)} samples.</p>
+{svg}
+<script type="application/json" id="series">{series(rec)}</script>
+<table id="spans"><tr><th>layer</th><th>state</th><th>from [s]</th><th>to [s]</th></tr>
+{rows}
+</table></body></html>
+"""
+
+
+def plot(trace: Path, output: Path) -> Recording:
+    """Write the plot of ``trace`` to ``output`` (PNG or HTML, by its suffix)."""
+    from lightrocks.workbench.files import write_atomic
+
+    rec = recording(read_trace(trace))
+    title = f"{trace.name}: outcome {rec.outcome or 'unfinished'}"
+    fig = figure(rec, title)
+    buffer = io.BytesIO() if output.suffix == ".png" else io.StringIO()
+    fig.savefig(buffer, format=output.suffix[1:] if output.suffix == ".png" else "svg", dpi=DPI)
+    if output.suffix == ".png":
+        tmp = output.with_name(f".{output.name}.tmp")
+        tmp.write_bytes(buffer.getvalue())
+        tmp.replace(output)
+    else:
+        svg = buffer.getvalue()
+        write_atomic(output, page(rec, title, svg[svg.index("<svg") :]))
+    return rec

@@ -1,0 +1,161 @@
+"""The monitor's web server: the page, the task's SVG, a websocket of the run's records and
+the control requests; every request carries the token printed with the URL.
+
+uvicorn serves on a daemon thread of its own, so the run's loop never waits for a browser.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import secrets
+import threading
+import time
+from contextlib import suppress
+from dataclasses import dataclass, field
+from importlib.resources import files
+from typing import Any
+
+from lightrocks.workbench.app.monitor.control import RunControl
+from lightrocks.workbench.app.monitor.feed import Feed
+
+PUSH_PERIOD = 0.1
+"""Seconds between two pushes of new records to a page."""
+
+
+def parse_address(text: str) -> tuple[str, int]:
+    """``[HOST:]PORT``; the host defaults to the loopback interface."""
+    host, _, port = text.rpartition(":")
+    if not port.isdigit() or not 0 <= int(port) < 65536:
+        raise ValueError(f"--monitor expects [HOST:]PORT, got '{text}'")
+    return host or "127.0.0.1", int(port)
+
+
+@dataclass
+class Monitor:
+    feed: Feed
+    control: RunControl
+    svg: str
+    title: str
+    token: str = field(default_factory=lambda: secrets.token_urlsafe(16))
+    summary: dict[str, Any] = field(default_factory=dict)
+    """Outcome and measurements once the run is over."""
+    replay: list[dict[str, Any]] | None = None
+    """A recorded run's records, for a page that replays it instead of watching a run."""
+    sent: dict[int, int] = field(default_factory=dict)
+    """The number of the last record pushed to each open page (0 until the run is over)."""
+
+    def app(self) -> Any:
+        from starlette.applications import Starlette
+        from starlette.requests import Request
+        from starlette.responses import HTMLResponse, JSONResponse, Response
+        from starlette.routing import Route, WebSocketRoute
+        from starlette.websockets import WebSocket
+
+        def allowed(request: Request | WebSocket) -> bool:
+            given = request.query_params.get("token", "")
+            return secrets.compare_digest(given.encode(), self.token.encode())
+
+        page = files("lightrocks.workbench.app.monitor.page")
+
+        async def index(request: Request) -> Response:
+            if not allowed(request):
+                return Response("a valid token is needed", status_code=403)
+            return HTMLResponse(page.joinpath("index.html").read_text(encoding="utf-8"))
+
+        async def script(request: Request) -> Response:
+            text = page.joinpath("monitor.js").read_text(encoding="utf-8")
+            return Response(text, media_type="text/javascript")
+
+        async def task_svg(request: Request) -> Response:
+            if not allowed(request):
+                return Response("a valid token is needed", status_code=403)
+            return Response(self.svg, media_type="image/svg+xml")
+
+        async def control(request: Request) -> Response:
+            if not allowed(request):
+                return JSONResponse({"error": "a valid token is needed"}, status_code=403)
+            if self.replay is not None:
+                return JSONResponse({"error": "a replay has no run to control"}, status_code=409)
+            action = request.path_params["action"]
+            c = self.control
+            if action == "pause":
+                c.pause()
+            elif action == "resume":
+                c.resume()
+            elif action == "step":
+                c.step()
+            elif action == "abort":
+                c.abort()
+            elif action == "break":
+                c.toggle_breakpoint(request.query_params.get("at", ""))
+            else:
+                return JSONResponse({"error": f"no action '{action}'"}, status_code=404)
+            return JSONResponse(self.status())
+
+        async def stream(socket: WebSocket) -> None:
+            if not allowed(socket):
+                await socket.close(code=1008)
+                return
+            await socket.accept()
+            if self.replay is not None:
+                await socket.send_json({"title": self.title, "replay": self.replay})
+                with suppress(Exception):  # until the page goes away
+                    while True:
+                        await socket.receive_text()
+                return
+            number, history = self.feed.history()
+            await socket.send_json({"title": self.title, "history": history})
+            try:
+                while True:
+                    over = bool(self.summary)
+                    number, fresh = self.feed.since(number)
+                    await socket.send_json({"records": fresh, "status": self.status()})
+                    self.sent[id(socket)] = number if over else 0
+                    await asyncio.sleep(PUSH_PERIOD)
+            except Exception:  # the page went away
+                return
+            finally:
+                self.sent.pop(id(socket), None)
+
+        return Starlette(
+            routes=[
+                Route("/", index),
+                Route("/monitor.js", script),
+                Route("/task.svg", task_svg),
+                Route("/control/{action}", control, methods=["POST"]),
+                WebSocketRoute("/stream", stream),
+            ]
+        )
+
+    def status(self) -> dict[str, Any]:
+        c = self.control
+        return {
+            "paused": c.paused,
+            "where": c.where,
+            "breakpoints": sorted(c.breakpoints),
+            **self.summary,
+        }
+
+    def drain(self, timeout: float = 3.0) -> None:
+        """Give open pages up to ``timeout`` seconds to receive the end of the run and its
+        summary, so a run that ends right away still shows its outcome."""
+        deadline = time.monotonic() + timeout
+        while any(n < self.feed.last for n in list(self.sent.values())):
+            if time.monotonic() > deadline:
+                return
+            time.sleep(0.02)
+
+    def serve(self, host: str, port: int) -> str:
+        """Start serving on a daemon thread; the URL with the token once it listens."""
+        import uvicorn
+
+        config = uvicorn.Config(self.app(), host=host, port=port, log_level="warning")
+        server = uvicorn.Server(config)
+        thread = threading.Thread(target=server.run, name="monitor", daemon=True)
+        thread.start()
+        while not server.started:
+            if not thread.is_alive():
+                raise OSError(f"the monitor cannot listen on {host}:{port}")
+            time.sleep(0.02)
+        bound = server.servers[0].sockets[0].getsockname()[1]
+        return f"http://{host}:{bound}/?token={self.token}"

@@ -1,0 +1,97 @@
+"""A watched run: the page's feed and the execution control, hooked into the trace's
+listeners (one call per record) and the adapter's control ticks."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from lightrocks.runtime import Abort, Trace
+from lightrocks.workbench.app.monitor.control import RunControl
+from lightrocks.workbench.app.monitor.feed import Feed
+from lightrocks.workbench.app.monitor.server import Monitor
+
+DEPTH = "3"
+"""Task, skill and action: the levels the page highlights."""
+
+
+class Watch:
+    """Publishes every record to the page and holds the run's thread while it is paused;
+    the pauses, resumptions and an abort are written into the trace."""
+
+    OWN = ("paused", "resumed")
+    """The kinds of record the watch writes itself."""
+
+    def __init__(self, monitor: Monitor) -> None:
+        self.monitor = monitor
+        self.control = monitor.control
+        self.trace: Trace | None = None
+        self.state = ""
+        """The innermost state entered last."""
+
+    def attach(self, trace: Trace) -> None:
+        self.trace = trace
+        trace.listeners.append(self.on_record)
+
+    def on_record(self, record: dict[str, Any]) -> None:
+        self.monitor.feed.publish(record)
+        if record["kind"] in self.OWN:
+            return
+        if record["kind"] == "enter":
+            self.state = record["state"]
+        self.control.stops_at(record)
+        self._hold(record["time"])
+
+    def on_tick(self, time: float) -> None:
+        self._hold(time)
+
+    def _hold(self, time: float) -> None:
+        if self.control.paused and self.trace is not None:
+            self.trace.write(time, "paused", at=self.control.where or self.state)
+            self.control.wait()
+            if not self.control.aborting:
+                self.trace.write(time, "resumed")
+        if self.control.aborting:
+            self.control.aborting = False
+            raise Abort("aborted from the monitor")
+
+    def finish(self, measurements: dict[str, Any]) -> None:
+        """Show the measurements and let open pages catch up before the process ends."""
+        self.monitor.summary["measurements"] = measurements
+        self.monitor.drain()
+
+
+def task_svg(model: Path, search_path: list[Path], name: str) -> str:
+    """The Graphviz SVG of the model's statechart, nested down to its actions."""
+    from lightrocks.workbench.check import check
+    from lightrocks.workbench.generators import GenerationRequest, load_generator
+
+    context = check([model], search_path)
+    request = GenerationRequest(context, [model], {"render": "svg", "depth": DEPTH}, None)
+    drawn = load_generator("dot").generate(request)
+    svg = next(v for k, v in drawn.items() if k.endswith(f"{name}.svg"))
+    text = svg.decode("utf-8") if isinstance(svg, bytes) else svg
+    return text[text.index("<svg") :]
+
+
+def monitor_for(
+    model: Path,
+    search_path: list[Path],
+    name: str,
+    breakpoints: Iterable[str] = (),
+    paused: bool = False,
+    aborts: Iterable[str] = (),
+) -> tuple[Monitor, Watch]:
+    control = RunControl(breakpoints, paused, aborts)
+    feed = Feed()
+    monitor = Monitor(feed, control, task_svg(model, search_path, name), name)
+    return monitor, Watch(monitor)
+
+
+def replay_for(
+    model: Path, search_path: list[Path], name: str, records: list[dict[str, Any]]
+) -> Monitor:
+    """A monitor that replays recorded records instead of watching a run."""
+    svg = task_svg(model, search_path, name)
+    return Monitor(Feed(), RunControl(), svg, f"{name} (replay)", replay=records)
