@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed
 # warning about the project; it is filtered by its text and nothing else is.
 INSTALL := PYTHONWARNINGS="ignore:Editable installation" $(BIN)/python -m pip install --quiet
 
-.PHONY: demo test lint format bench pictures clean
+.PHONY: demo test lint format bench pictures vsix clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -28,12 +28,17 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_adapters.py
 	$(BIN)/python benchmarks/bench_case_studies.py
 	$(BIN)/python benchmarks/bench_sweep.py
+	$(BIN)/python benchmarks/bench_incremental.py
 
 PICTURES := examples/screwing/skills/ScrewIn.lr examples/screwing/tasks/ScrewTask.lr \
 	examples/din_rail/tasks/AssembleRail.lr examples/din_rail_ahead/tasks/PlugTerminalAhead.lr
 
 pictures: $(STAMP)
 	$(BIN)/lightrocks generate $(PICTURES) --path examples --target dot --option render=png -o docs/images
+
+# The VS Code extension: node tooling stays in vscode/node_modules (npm ci from the lock file).
+vsix:
+	cd vscode && npm ci --no-audit --no-fund && npx --no-install vsce package --skip-license --out lightrocks.vsix
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

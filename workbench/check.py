@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import gc
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -32,12 +32,19 @@ def all_cocos() -> list[CoCo]:
     return sorted(unique.values(), key=lambda c: c.code)
 
 
-def load(paths: Iterable[Path], model_path: Iterable[Path] = ()) -> CheckContext:
-    """Parse the models below ``paths`` and everything they import."""
+def load(
+    paths: Iterable[Path],
+    model_path: Iterable[Path] = (),
+    texts: Mapping[Path, str] | None = None,
+) -> CheckContext:
+    """Parse the models below ``paths`` and everything they import.
+
+    ``texts`` maps resolved paths to contents that replace the files on disk (editor buffers).
+    """
     paths = list(paths)
     diagnostics = Diagnostics()
     roots = [*model_path, *(p for p in paths if p.is_dir())]
-    workspace = Workspace(ModelPath(roots), diagnostics)
+    workspace = Workspace(ModelPath(roots), diagnostics, texts)
     files = [f for p in paths for f in model_files(p, extensions())]
     for file in files:
         loaded = workspace.load(file)
@@ -48,9 +55,13 @@ def load(paths: Iterable[Path], model_path: Iterable[Path] = ()) -> CheckContext
     return CheckContext(workspace, diagnostics)
 
 
-def check(paths: Iterable[Path], model_path: Iterable[Path] = ()) -> CheckContext:
+def check(
+    paths: Iterable[Path],
+    model_path: Iterable[Path] = (),
+    texts: Mapping[Path, str] | None = None,
+) -> CheckContext:
     """Load and run every CoCo; all findings end up in ``context.diagnostics``."""
-    context = load(paths, model_path)
+    context = load(paths, model_path, texts)
     gc.freeze()  # the loaded models live to the end: keep the collector from rescanning them
     try:
         for coco in all_cocos():

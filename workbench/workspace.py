@@ -7,12 +7,14 @@ that searches the whole model for every reference.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, is_dataclass
 from pathlib import Path
 from typing import Any
 
 from lightrocks.metamodel.ast import Import, Position
 from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench import parsecache
 from lightrocks.workbench.diagnostics import Diagnostics, did_you_mean
 from lightrocks.workbench.languages import Language, extensions, language_for
 from lightrocks.workbench.modelpath import ModelPath
@@ -45,9 +47,15 @@ class Symbol:
 
 
 class Workspace:
-    def __init__(self, model_path: ModelPath, diagnostics: Diagnostics) -> None:
+    def __init__(
+        self,
+        model_path: ModelPath,
+        diagnostics: Diagnostics,
+        texts: Mapping[Path, str] | None = None,
+    ) -> None:
         self.model_path = model_path
         self.diagnostics = diagnostics
+        self.texts = texts or {}  # unsaved editor contents that replace files on disk
         self.files: dict[Path, Loaded | None] = {}
         self.symbols: dict[str, Symbol] = {}
         self._packages: dict[str, dict[str, Symbol]] = {}
@@ -71,7 +79,7 @@ class Workspace:
         if text is None:
             return None
         try:
-            unit = language.parse(text, shown)
+            unit = parsecache.parse(language, text, shown)
         except SyntaxProblem as problem:
             where = Position(shown, problem.line, problem.column)
             self.diagnostics.error(where, "LR0001", problem.message)
@@ -95,7 +103,7 @@ class Workspace:
             self.diagnostics.error(where, "LR0004", "not a regular file")
             return None
         try:
-            data = path.read_bytes()
+            data = self._bytes(path)
         except OSError as error:
             self.diagnostics.error(where, "LR0004", f"cannot read file: {error.strerror}")
             return None
@@ -117,6 +125,11 @@ class Workspace:
             self.diagnostics.error(where, "LR0003", "empty model file")
             return None
         return text
+
+    def _bytes(self, path: Path) -> bytes:
+        if path in self.texts:
+            return self.texts[path].encode("utf-8", "surrogateescape")
+        return path.read_bytes()
 
     def _declare(self, qualified_name: str, node: Any, loaded: Loaded) -> None:
         existing = self.symbols.get(qualified_name)

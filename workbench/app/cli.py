@@ -16,7 +16,8 @@ from rich.console import Console
 
 from lightrocks.metamodel.ast import Position
 from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.workbench import report
+from lightrocks.workbench import parsecache, report
+from lightrocks.workbench.app.parsestore import DiskStore
 from lightrocks.workbench.check import all_cocos, check
 from lightrocks.workbench.diagnostics import Diagnostics, Severity
 from lightrocks.workbench.extensions import language_extensions
@@ -576,6 +577,17 @@ def cmd_list(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _configure_lsp(sub: argparse._SubParsersAction) -> None:
+    sub.add_parser("lsp", help="serve the language server protocol over stdio (for editors)")
+
+
+@command(_configure_lsp)
+def cmd_lsp(args: argparse.Namespace) -> int:
+    from lightrocks.workbench.app.lsp.server import main as serve  # only editors need pygls
+
+    return serve()
+
+
 def parser() -> argparse.ArgumentParser:
     main_parser = argparse.ArgumentParser(
         prog="lightrocks", description="LightRocks language workbench"
@@ -590,6 +602,7 @@ def parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
     console = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
+    parsecache.use_store(DiskStore())  # unchanged files are not parsed again by the next run
     try:
         return COMMANDS[args.command][1](args)
     except UsageError as error:

@@ -1,0 +1,99 @@
+"""The parse cache: stored units read back whole, planted entries never trusted."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench import parsecache
+from lightrocks.workbench.app import cli
+from lightrocks.workbench.app.parsestore import DiskStore, decode, encode
+from lightrocks.workbench.languages import language_for
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+MODELS = sorted(p for p in EXAMPLES.rglob("*") if p.suffix in (".lr", ".lrd"))
+
+
+@pytest.fixture
+def store(tmp_path: Path):
+    store = DiskStore(tmp_path / "parse")
+    parsecache.use_store(store)
+    parsecache._memory.clear()
+    yield store
+    parsecache.use_store(None)
+    parsecache._memory.clear()
+
+
+@pytest.mark.parametrize("path", MODELS, ids=lambda p: p.name)
+def test_a_stored_unit_reads_back_with_its_positions(path: Path) -> None:
+    unit = language_for(path.suffix).parse(path.read_text(encoding="utf-8"), str(path))
+    again = decode(json.loads(json.dumps(encode(unit))))
+    assert again == unit
+    assert encode(again) == encode(unit)  # positions take no part in equality
+
+
+def test_a_syntax_problem_is_stored_too(store: DiskStore) -> None:
+    language = language_for(".lr")
+    with pytest.raises(SyntaxProblem) as first:
+        parsecache.parse(language, "statechart {", "Broken.lr")
+    parsecache._memory.clear()
+    with pytest.raises(SyntaxProblem) as second:
+        parsecache.parse(language, "statechart {", "Broken.lr")
+    assert (second.value.line, second.value.column) == (first.value.line, first.value.column)
+    assert len(list(store.folder.rglob("*"))) == 2  # one folder, one entry
+
+
+@pytest.mark.parametrize(
+    "planted",
+    [
+        '{"$": "Popen", "args": ["true"]}',
+        '{"$": "__class__"}',
+        '{"$": "Name"}',
+        "not json",
+        '{"$": "Name", "name": "x", "position": {"$": "Position", "file": 1}}',
+    ],
+)
+def test_a_planted_or_corrupt_entry_is_parsed_again(store: DiskStore, planted: str) -> None:
+    language, text = language_for(".lr"), (EXAMPLES / "plain" / "Turnstile.lr").read_text()
+    expected = language.parse(text, "Turnstile.lr")
+    key = parsecache._key(language, text, "Turnstile.lr")
+    (store.folder / key[:2]).mkdir(parents=True)
+    (store.folder / key[:2] / key).write_text(planted, encoding="utf-8")
+    assert parsecache.parse(language, text, "Turnstile.lr") == expected
+    assert decode(json.loads((store.folder / key[:2] / key).read_text())) == expected
+
+
+def test_the_key_covers_grammar_text_and_file(monkeypatch: pytest.MonkeyPatch) -> None:
+    language = language_for(".lr")
+    key = parsecache._key(language, "text", "A.lr")
+    assert key != parsecache._key(language, "text ", "A.lr")
+    assert key != parsecache._key(language, "text", "B.lr")
+    monkeypatch.setattr(parsecache, "grammar_digest", lambda module: "another grammar")
+    assert key != parsecache._key(language, "text", "A.lr")
+
+
+def test_a_second_check_reads_every_file_from_the_store(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture
+) -> None:
+    shutil.copytree(EXAMPLES / "screwing", tmp_path / "models" / "screwing")
+    shutil.copytree(EXAMPLES / "robots", tmp_path / "models" / "robots")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    hits = []
+    read = DiskStore.get
+    monkeypatch.setattr(DiskStore, "get", lambda self, key: hits.append(read(self, key)))
+    parsecache._memory.clear()
+    first = cli.main(["check", str(tmp_path / "models")]), capsys.readouterr().out
+    assert hits and not any(hits)
+    monkeypatch.setattr(
+        DiskStore, "get", lambda self, key: hits.append(read(self, key)) or hits[-1]
+    )
+    hits.clear()
+    parsecache._memory.clear()
+    second = cli.main(["check", str(tmp_path / "models")]), capsys.readouterr().out
+    assert hits and all(hits)
+    assert second == first
+    parsecache.use_store(None)

@@ -1,0 +1,1 @@
+"""The LightRocks language server: the workbench's checks and printers behind LSP."""

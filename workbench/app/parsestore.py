@@ -1,0 +1,78 @@
+"""The parse cache on disk: parsed units as JSON in the user's cache folder.
+
+Entries are data, never code: a unit is written as nested objects naming their class, and
+read back only into the dataclasses of :mod:`lightrocks.metamodel.ast`, so a planted or
+corrupt entry can at worst be a cache miss, never run anything. Entries are written to a
+private temporary file and renamed into place, so readers never see half an entry.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from dataclasses import fields, is_dataclass
+from pathlib import Path
+from typing import Any
+
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench.app.cache import cache_root
+
+CLASSES = {
+    name: value
+    for name, value in vars(ast).items()
+    if isinstance(value, type) and is_dataclass(value) and value.__module__ == ast.__name__
+}
+PROBLEM = "SyntaxProblem"
+
+
+class DiskStore:
+    """Parse results below ``folder`` (default: ``<user cache>/lightrocks/parse``)."""
+
+    def __init__(self, folder: Path | None = None) -> None:
+        self.folder = folder or cache_root() / "parse"
+
+    def get(self, key: str) -> ast.Unit | SyntaxProblem | None:
+        try:
+            return decode(json.loads((self.folder / key[:2] / key).read_text(encoding="utf-8")))
+        except (OSError, ValueError, TypeError, KeyError, RecursionError):
+            return None
+
+    def put(self, key: str, result: ast.Unit | SyntaxProblem) -> None:
+        target = self.folder / key[:2] / key
+        try:
+            target.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+            handle, staged = tempfile.mkstemp(dir=target.parent, prefix=f".{key}.")
+            with os.fdopen(handle, "w", encoding="utf-8") as file:
+                json.dump(encode(result), file, separators=(",", ":"))
+            os.replace(staged, target)
+        except (OSError, ValueError, RecursionError):
+            return  # a cache that cannot be written only costs the next run a parse
+
+
+def encode(value: Any) -> Any:
+    """A unit (or syntax problem) as JSON data; tuples become lists."""
+    if isinstance(value, SyntaxProblem):
+        return {"$": PROBLEM, "message": value.message, "line": value.line, "column": value.column}
+    if is_dataclass(value):
+        encoded = {f.name: encode(getattr(value, f.name)) for f in fields(value)}
+        return {"$": type(value).__name__, **encoded}
+    if isinstance(value, tuple):
+        return [encode(item) for item in value]
+    if value is None or isinstance(value, str | int | float):
+        return value
+    raise TypeError(f"cannot store {type(value).__name__}")
+
+
+def decode(data: Any) -> Any:
+    """The inverse of :func:`encode`; anything but the known classes is rejected."""
+    if isinstance(data, list):
+        return tuple(decode(item) for item in data)
+    if isinstance(data, dict):
+        name = data["$"]
+        arguments = {k: decode(v) for k, v in data.items() if k != "$"}
+        if name == PROBLEM:
+            return SyntaxProblem(arguments["message"], arguments["line"], arguments["column"])
+        return CLASSES[name](**arguments)
+    return data

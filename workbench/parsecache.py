@@ -1,0 +1,92 @@
+"""Parse results keyed by content: an unchanged file is never parsed twice.
+
+Units are immutable dataclasses, so one parsed unit can serve every later check of the same
+text. Results live in memory for the process (the language server re-checks on every
+keystroke) and, when a :class:`Store` is installed, between processes (the CLI installs the
+on-disk store of :mod:`lightrocks.workbench.app.parsestore`). The key covers the installed
+version, a digest of the grammar and of the code that builds units, the language, the file
+name shown in positions and the text, so no stale result is ever returned.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+from functools import cache
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import Any, Protocol
+
+from lightrocks.metamodel import ast
+from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench.languages import Language
+
+
+class Store(Protocol):
+    """Somewhere results outlive the process; a miss or an unreadable entry is ``None``."""
+
+    def get(self, key: str) -> ast.Unit | SyntaxProblem | None: ...
+
+    def put(self, key: str, result: ast.Unit | SyntaxProblem) -> None: ...
+
+
+MEMORY_ENTRIES = 10_000  # a large workspace plus the keystroke states of an editing session
+_memory: dict[str, Any] = {}
+_store: Store | None = None
+
+
+def use_store(store: Store | None) -> None:
+    """Keep results in ``store`` too (``None``: memory only)."""
+    global _store
+    _store = store
+
+
+def parse(language: Language, text: str, shown: str) -> Any:
+    """``language.parse(text, shown)``, answered from the cache when the content is known."""
+    key = _key(language, text, shown)
+    result = _memory.get(key)
+    if result is None and _store is not None:
+        result = _store.get(key)
+    if result is None:
+        try:
+            result = language.parse(text, shown)
+        except SyntaxProblem as problem:
+            result = problem
+        if _store is not None:
+            _store.put(key, result)
+    _memory.pop(key, None)
+    _memory[key] = result  # most recently used last; the oldest entry goes first
+    if len(_memory) > MEMORY_ENTRIES:
+        del _memory[next(iter(_memory))]
+    if isinstance(result, SyntaxProblem):
+        raise result
+    return result
+
+
+def _key(language: Language, text: str, shown: str) -> str:
+    digest = hashlib.blake2b(digest_size=20)
+    for part in (_version(), grammar_digest(language.parse.__module__), language.name, shown):
+        digest.update(part.encode("utf-8", "surrogatepass") + b"\x00")
+    digest.update(text.encode("utf-8", "surrogatepass"))
+    return digest.hexdigest()
+
+
+@cache
+def grammar_digest(module: str) -> str:
+    """A digest of the grammar fragments and of the code turning parse trees into units:
+    an editable install changes them without changing the version."""
+    folders = {Path(importlib.import_module(module).__file__).parent, Path(ast.__file__).parent}
+    digest = hashlib.sha256()
+    for folder in sorted(folders):
+        for path in sorted(folder.glob("*")):
+            if path.suffix in (".tx", ".py"):
+                digest.update(path.name.encode() + b"\x00" + path.read_bytes() + b"\x00")
+    return digest.hexdigest()
+
+
+@cache
+def _version() -> str:
+    try:
+        return version("lightrocks")
+    except PackageNotFoundError:
+        return "unknown"
