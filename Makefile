@@ -29,6 +29,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_case_studies.py
 	$(BIN)/python benchmarks/bench_sweep.py
 	$(BIN)/python benchmarks/bench_incremental.py
+	$(BIN)/python benchmarks/bench_monitor.py
 
 PICTURES := examples/screwing/skills/ScrewIn.lr examples/screwing/tasks/ScrewTask.lr \
 	examples/din_rail/tasks/AssembleRail.lr examples/din_rail_ahead/tasks/PlugTerminalAhead.lr
