@@ -131,21 +131,22 @@ def name_matches_file(context: object) -> Iterator[Finding]:
 
 @coco("LR0110", Severity.ERROR, "transition sources and targets resolve")
 def transition_ends_resolve(context: object) -> Iterator[Finding]:
+    for _, names, elsewhere, name, position in _transition_ends(context):
+        if name not in names and name not in elsewhere:
+            yield (position, f"unknown state or condition '{name}'", did_you_mean(name, names))
+
+
+def _transition_ends(
+    context: object,
+) -> Iterator[tuple[Region, list[str], dict[str, str], str, ast.Position]]:
+    """Every source and target of a transition with the names of its own region and the
+    states of the sibling regions (see :func:`_sibling_regions`)."""
     for _, region in _own_regions(analysis(context)):
-        names = [*region.states, *region.conditions, *region.pseudostates]
+        own = [*region.states, *region.conditions, *region.pseudostates]
         elsewhere = _sibling_regions(region)
         for transition in region.transitions:
-            ends = (
-                (transition.source, transition.source_position),
-                (transition.target, transition.target_position),
-            )
-            for name, position in ends:
-                if name not in names and name not in elsewhere:
-                    yield (
-                        position,
-                        f"unknown state or condition '{name}'",
-                        did_you_mean(name, names),
-                    )
+            yield region, own, elsewhere, transition.source, transition.source_position
+            yield region, own, elsewhere, transition.target, transition.target_position
 
 
 def _sibling_regions(region: Region) -> dict[str, str]:
@@ -163,22 +164,14 @@ def _sibling_regions(region: Region) -> dict[str, str]:
 
 @coco("LR0218", Severity.ERROR, "no transition crosses orthogonal regions")
 def no_crossing(context: object) -> Iterator[Finding]:
-    for _, region in _own_regions(analysis(context)):
-        own = [*region.states, *region.conditions, *region.pseudostates]
-        elsewhere = _sibling_regions(region)
-        for transition in region.transitions:
-            ends = (
-                (transition.source, transition.source_position),
-                (transition.target, transition.target_position),
+    for region, own, elsewhere, name, position in _transition_ends(context):
+        if name not in own and name in elsewhere:
+            yield (
+                position,
+                f"'{name}' is in region '{elsewhere[name]}': a transition cannot "
+                f"cross from region '{region.name}'",
+                "regions meet only where their state is entered and left",
             )
-            for name, position in ends:
-                if name not in own and name in elsewhere:
-                    yield (
-                        position,
-                        f"'{name}' is in region '{elsewhere[name]}': a transition cannot "
-                        f"cross from region '{region.name}'",
-                        "regions meet only where their state is entered and left",
-                    )
 
 
 BESIDE_REGIONS = (ast.State, ast.Pseudostate, ast.Transition)
