@@ -8,10 +8,11 @@ simulated time, so any adapter that honours stop conditions gets sampled.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 from lightrocks.runtime import Trace
-from lightrocks.runtime.contract import StopCondition
+from lightrocks.runtime.contract import Command, StopCondition
 from lightrocks.runtime.trace import to_json
 
 PERIOD = 0.01
@@ -44,8 +45,17 @@ class SampledAdapter:
         stop: Sequence[StopCondition],
         budget: float,
     ) -> Any:
-        sampler = StopCondition("", self._sample)
-        return self._adapter.execute(device, command, args, [*stop, sampler], budget)
+        return self.execute_all([Command(device, command, args, stop, budget)])[0]
+
+    def execute_all(self, commands: Sequence[Command]) -> list[Any]:
+        """Commands of several regions run in one control loop: the first carries the
+        sampler, so it is still consulted at every tick."""
+        first, *others = commands
+        sampled = replace(first, stop=[*first.stop, StopCondition("", self._sample)])
+        if not others:
+            c = sampled  # an adapter without execute_all still runs one command
+            return [self._adapter.execute(c.device, c.command, c.args, c.stop, c.budget)]
+        return list(self._adapter.execute_all([sampled, *others]))
 
     def _sample(self, snapshot: Any) -> bool:
         time = self._adapter.time
