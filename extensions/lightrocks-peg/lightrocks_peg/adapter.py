@@ -8,11 +8,11 @@ and compliant, so a jammed peg is not pushed further.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from typing import Any
+from collections.abc import Sequence
+from dataclasses import replace
 
 from lightrocks.adapters.mujoco import MujocoAdapter
-from lightrocks.runtime.contract import CommandResult, Snapshot, StopCondition
+from lightrocks.runtime.contract import Command, CommandResult, Snapshot, StopCondition
 
 FORCE_LIMIT = 80.0
 """Contact force [N] beyond which a command is stopped."""
@@ -24,13 +24,7 @@ def overloaded(snapshot: Snapshot) -> bool:
 
 
 class GuardedMujocoAdapter(MujocoAdapter):
-    def execute(
-        self,
-        device: str,
-        command: str,
-        args: Mapping[str, Any],
-        stop: Sequence[StopCondition],
-        budget: float,
-    ) -> CommandResult:
-        guarded = [StopCondition(OVERLOAD, overloaded), *stop]
-        return super().execute(device, command, args, guarded, budget)
+    def execute_all(self, commands: Sequence[Command]) -> list[CommandResult]:
+        guard = StopCondition(OVERLOAD, overloaded)
+        guarded = [replace(c, stop=[guard, *c.stop]) for c in commands]
+        return super().execute_all(guarded)
