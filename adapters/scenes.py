@@ -36,9 +36,23 @@ THREAD_TORQUE_START = 0.05
 THREAD_TORQUE_END = 0.20
 """Thread friction torque [Nm] at the target depth (it grows linearly in between)."""
 SCREW_AXIS_XY = (0.55, 0.0)
-"""Screw axis position on the table [m]."""
-SCREW_HEAD_TOP_Z = 0.184
+"""The hole's axis on the cube [m]."""
+CUBE_TOP_Z = 0.15
+"""Height [m] of the cube's top face, the hole's mouth."""
+CATCH_DEPTH = 0.0008
+"""The thread catches once the tip is this far [m] below the cube top (depth 0 there)."""
+CATCH_WINDOW = 0.0025
+"""... and no deeper than this [m] below the top: further down, the first turn is missed."""
+CATCH_RADIUS = 0.001
+"""... with the tip this close [m] to the hole axis ..."""
+CATCH_TILT = math.radians(2.0)
+"""... and the screw's axis within this angle of the hole axis."""
+SCREW_LENGTH = 0.035
+"""From the tip (the screw's frame origin) to the top of the head [m]."""
+SCREW_HEAD_TOP_Z = CUBE_TOP_Z - CATCH_DEPTH + SCREW_LENGTH
 """Height [m] of the screw head's top face at depth 0 (head is 22 mm high, 20 mm across)."""
+SCREW_START = (0.50, 0.15, 0.118)
+"""Where the tip stands at the start [m]: in the holder's bore, the screw upright."""
 
 # --- top-hat rail cell (adapters/models/din_rail.xml) ---------------------------------------
 
@@ -71,35 +85,85 @@ def thread_torque(depth: float) -> float:
     return THREAD_TORQUE_START + (THREAD_TORQUE_END - THREAD_TORQUE_START) * s
 
 
-_THREAD_ADDRESSES: weakref.WeakKeyDictionary[mujoco.MjModel, tuple[int, int]] = (
-    weakref.WeakKeyDictionary()
-)
+@dataclass(frozen=True)
+class _Thread:
+    """Addresses of the screw's thread in one model (cached: the step hook runs at 1 kHz)."""
 
+    slide: int  # qpos of screw_slide
+    hinge: int  # qpos of screw_hinge
+    hinge_dof: int
+    dofs: tuple[int, int]  # dofs of slide and hinge
+    catch: int  # the weld equality thread -> screw
+    screw: int  # body
 
-def _thread_addresses(model: mujoco.MjModel) -> tuple[int, int]:
-    """qpos address of the screw slide and dof address of the screw hinge (cached per model)."""
-    found = _THREAD_ADDRESSES.get(model)
-    if found is None:
-        found = (
-            int(model.jnt_qposadr[model.joint("screw_slide").id]),
-            int(model.jnt_dofadr[model.joint("screw_hinge").id]),
+    @classmethod
+    def of(cls, model: mujoco.MjModel) -> _Thread:
+        slide, hinge = model.joint("screw_slide"), model.joint("screw_hinge")
+        return cls(
+            int(slide.qposadr[0]),
+            int(hinge.qposadr[0]),
+            int(hinge.dofadr[0]),
+            (int(slide.dofadr[0]), int(hinge.dofadr[0])),
+            int(model.equality("thread_catch").id),
+            int(model.body("screw").id),
         )
-        _THREAD_ADDRESSES[model] = found
+
+
+_THREADS: weakref.WeakKeyDictionary[mujoco.MjModel, _Thread] = weakref.WeakKeyDictionary()
+
+
+def _thread(model: mujoco.MjModel) -> _Thread:
+    found = _THREADS.get(model)
+    if found is None:
+        found = _THREADS[model] = _Thread.of(model)
     return found
+
+
+def catch_depth(tip: np.ndarray, axis_z: float) -> float | None:
+    """The depth [m] at which the thread catches a screw whose tip is at ``tip`` (world) and
+    whose axis has the world-z component ``axis_z``, or None when it does not catch: the tip is
+    off the hole, above the catch or past it, or the screw is tilted more than CATCH_TILT."""
+    below = CUBE_TOP_Z - float(tip[2])
+    if not CATCH_DEPTH <= below <= CATCH_WINDOW or axis_z < math.cos(CATCH_TILT):
+        return None
+    off = math.hypot(float(tip[0]) - SCREW_AXIS_XY[0], float(tip[1]) - SCREW_AXIS_XY[1])
+    return below - CATCH_DEPTH if off <= CATCH_RADIUS else None
+
+
+def _catch(model: mujoco.MjModel, data: mujoco.MjData, thread: _Thread) -> None:
+    """Engage the thread if the screw's tip has entered the hole straight enough."""
+    rotation = data.xmat[thread.screw]
+    depth = catch_depth(data.xpos[thread.screw], float(rotation[8]))
+    if depth is None:
+        return
+    turn = depth * 2.0 * math.pi / SCREW_PITCH
+    data.qpos[thread.slide] = depth
+    data.qpos[thread.hinge] = turn
+    data.qvel[list(thread.dofs)] = 0.0
+    # the screw keeps its own turn about the axis: thread frame (turned by -turn about z)
+    # to screw = a rotation by yaw + turn about z; it sits at the thread frame's origin
+    yaw = math.atan2(float(rotation[3]), float(rotation[0]))
+    half = 0.5 * (yaw + turn)
+    model.eq_data[thread.catch, 3:10] = (0.0, 0.0, 0.0, math.cos(half), 0.0, 0.0, math.sin(half))
+    data.eq_active[thread.catch] = 1
 
 
 def scene_step(scene_name: str, model: mujoco.MjModel, data: mujoco.MjData) -> None:
     """Per-step hook; adapters call it before every ``mj_step`` of the scene (1 kHz hot path).
 
-    Screwing: sets the screw hinge's ``dof_frictionloss`` to :func:`thread_torque` of the
-    current depth, so the torque needed to turn the screw grows as it goes in. Without this
-    hook the thread still works, with the constant start friction of the MJCF file.
+    Screwing: until the thread has caught, checks whether it catches now (see
+    :func:`catch_depth`) and then engages it; once caught, sets the screw hinge's
+    ``dof_frictionloss`` to :func:`thread_torque` of the current depth, so the torque needed
+    to turn the screw grows as it goes in. Without this hook the screw never catches.
     Other scenes: nothing to do.
     """
     if scene_name != "screwing" and scene_key(scene_name) != "screwing":
         return
-    slide, hinge = _thread_addresses(model)
-    model.dof_frictionloss[hinge] = thread_torque(float(data.qpos[slide]))
+    thread = _thread(model)
+    if not data.eq_active[thread.catch]:
+        _catch(model, data, thread)
+        return
+    model.dof_frictionloss[thread.hinge_dof] = thread_torque(float(data.qpos[thread.slide]))
 
 
 def measurements(
@@ -107,9 +171,10 @@ def measurements(
 ) -> dict[str, float | bool]:
     """Scene values for stop conditions, environment updates and tests.
 
-    screwing: ``screw_depth`` [m] advance into the cube since the start, ``screw_angle`` [rad]
-    turned since the start (positive = tightening), ``screw_bottomed`` (head seated),
-    ``thread_torque`` [Nm] the current thread friction.
+    screwing: ``screw_depth`` [m] advance into the cube since the thread caught,
+    ``screw_angle`` [rad] the thread's turn (positive = tightening), ``screw_bottomed`` (head
+    seated), ``thread_torque`` [Nm] the current thread friction, ``thread_caught``, the tip's
+    position ``screw_x``, ``screw_y``, ``screw_z`` [m] and ``screw_tilt`` [rad] of its axis.
     din_rail: ``terminalN_latched`` (on the rail, upright, housing on the lips and both catches
     under the lips), ``terminalN_height`` [m] of the housing underside above the lips' top, and
     ``terminals_latched`` (how many are latched).
@@ -135,13 +200,19 @@ def goal_met(scene_name: str, values: Mapping[str, float | bool]) -> bool:
 
 
 def _screwing_measurements(model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, float | bool]:
-    depth = float(data.qpos[model.jnt_qposadr[model.joint("screw_slide").id]])
-    angle = float(data.qpos[model.jnt_qposadr[model.joint("screw_hinge").id]])
+    thread = _thread(model)
+    depth = float(data.qpos[thread.slide])
+    tip = data.xpos[thread.screw]
     return {
         "screw_depth": depth,
-        "screw_angle": angle,
+        "screw_angle": float(data.qpos[thread.hinge]),
         "screw_bottomed": depth >= SCREW_TARGET_DEPTH - 1e-4,
         "thread_torque": thread_torque(depth),
+        "thread_caught": bool(data.eq_active[thread.catch]),
+        "screw_x": float(tip[0]),
+        "screw_y": float(tip[1]),
+        "screw_z": float(tip[2]),
+        "screw_tilt": math.acos(min(max(float(data.xmat[thread.screw][8]), -1.0), 1.0)),
     }
 
 
