@@ -148,6 +148,19 @@ def _catch(model: mujoco.MjModel, data: mujoco.MjData, thread: _Thread) -> None:
     data.eq_active[thread.catch] = 1
 
 
+def place_screw(
+    model: mujoco.MjModel, data: mujoco.MjData, tip: np.ndarray, tilt: float = 0.0
+) -> None:
+    """Put the free screw with its tip at ``tip`` (world), leaning by ``tilt`` [rad] about the
+    world x axis, at rest; for fixture tests and for starting with a hand-started screw."""
+    free = model.joint("screw_free")
+    qpos, dof = int(free.qposadr[0]), int(free.dofadr[0])
+    data.qpos[qpos : qpos + 3] = tip
+    data.qpos[qpos + 3 : qpos + 7] = (math.cos(tilt / 2), math.sin(tilt / 2), 0.0, 0.0)
+    data.qvel[dof : dof + 6] = 0.0
+    mujoco.mj_forward(model, data)
+
+
 def scene_step(scene_name: str, model: mujoco.MjModel, data: mujoco.MjData) -> None:
     """Per-step hook; adapters call it before every ``mj_step`` of the scene (1 kHz hot path).
 
@@ -256,31 +269,54 @@ def _tightening_yaw(rotation: np.ndarray) -> float:
     return -math.atan2(float(rotation[1, 0]), float(rotation[0, 0]))
 
 
+HOLE_RADIUS = 0.0025
+"""Half the width of the cube's pilot hole [m] (the twin takes it round)."""
+TIP_RADIUS = 0.002
+"""Radius of the screw's rounded tip and shank [m]."""
+CUBE_HALF = 0.025
+
+
 @dataclass
 class ScrewTwin:
-    """Kinematic screw for dry runs: a gripped screw turns with the TCP and advances.
+    """Kinematic screw for dry runs: carried by the gripper, caught by the thread, turned in.
 
     Interface (shared with :class:`RailTwin`): ``reset()``, ``graspable(tcp_position)``,
     ``step(dt, tcp_position, tcp_rotation, holding) -> wrench`` and ``measurements()``;
     ``tcp_position`` (3,) and ``tcp_rotation`` (3, 3) in the world frame,
     ``holding`` whether the gripper is closed on something; the result is the wrench (force,
-    torque; world axes, at the TCP) that the fixture exerts on the gripper. The screw counts
-    as gripped when the gripper holds with the TCP within 1 cm of the head's axis and inside
-    the head's height. While gripped, the screw angle follows the TCP's rotation about the
-    screw axis, the depth is ``pitch * angle / 2 pi``, and the screw resists with the thread
-    torque (opposing the turn; smoothed around zero speed); past bottom-out the screw stops
-    and the reaction grows with ``stop_stiffness`` [Nm/rad] times the extra turn.
+    torque; world axes, at the TCP) that the fixture exerts on the gripper.
+
+    The screw counts as gripped when the gripper holds with the TCP within 1 cm of its axis and
+    inside the head's height. Until the thread has caught, a gripped screw moves rigidly with
+    the hand, and its round tip meets the cube's top and the edge of its (round) hole with a
+    spring of ``contact_stiffness`` (frictionless); the thread catches under the same rule as
+    in MuJoCo (:func:`catch_depth`). Once caught, the screw's angle follows the TCP's rotation
+    about the hole axis, the depth is ``pitch * angle / 2 pi``, the thread holds the hand at
+    the height of that depth with ``axial_stiffness`` and resists the turn with the thread
+    torque (opposing it; smoothed around zero speed); past bottom-out the screw stops and the
+    reaction grows with ``stop_stiffness`` [Nm/rad] times the extra turn. A screw let go of
+    stays where it is (no gravity in the twin).
     """
 
     pitch: float = SCREW_PITCH
     target_depth: float = SCREW_TARGET_DEPTH
     axis_xy: tuple[float, float] = SCREW_AXIS_XY
-    head_top_z: float = SCREW_HEAD_TOP_Z
     stop_stiffness: float = 50.0
+    contact_stiffness: float = 2.0e4
+    axial_stiffness: float = 2.0e4
     angle: float = 0.0
+    caught: bool = False
+    tip: np.ndarray = field(default_factory=lambda: np.array(SCREW_START))
+    axis: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, 1.0]))
     _gripped: bool = field(default=False, repr=False)
+    _in_hand: tuple[np.ndarray, np.ndarray] = field(
+        default_factory=lambda: (np.zeros(3), np.zeros(3)), repr=False
+    )
+    """Tip and axis in the TCP frame while carried."""
     _yaw: float = field(default=0.0, repr=False)
     _turn: float = field(default=0.0, repr=False)
+    _top: float = field(default=0.0, repr=False)
+    """TCP height at depth 0 of the screw in the hand, once caught."""
 
     @property
     def max_angle(self) -> float:
@@ -291,36 +327,91 @@ class ScrewTwin:
         return self.pitch * self.angle / (2.0 * math.pi)
 
     def reset(self) -> None:
-        self.angle, self._gripped, self._turn = 0.0, False, 0.0
+        self.angle, self.caught, self._gripped, self._turn = 0.0, False, False, 0.0
+        self.tip, self.axis = np.array(SCREW_START), np.array([0.0, 0.0, 1.0])
+
+    def hand_start(self) -> None:
+        """Put the screw into the hole with its thread caught at depth 0 (as a worker would)."""
+        self.reset()
+        self.caught = True
+        self.tip = np.array([*self.axis_xy, CUBE_TOP_Z - CATCH_DEPTH])
 
     def graspable(self, tcp_position: np.ndarray) -> bool:
         """Whether a gripper closing at ``tcp_position`` would hold the screw head."""
-        dx = float(tcp_position[0]) - self.axis_xy[0]
-        dy = float(tcp_position[1]) - self.axis_xy[1]
-        top = self.head_top_z - self.depth
+        head_top = self.tip + SCREW_LENGTH * self.axis
+        dx = float(tcp_position[0]) - float(head_top[0])
+        dy = float(tcp_position[1]) - float(head_top[1])
+        top = float(head_top[2])
         return math.hypot(dx, dy) < 0.01 and top - 0.022 <= float(tcp_position[2]) <= top + 0.005
 
     def step(
         self, dt: float, tcp_position: np.ndarray, tcp_rotation: np.ndarray, holding: bool
     ) -> np.ndarray:
-        wrench = np.zeros(6)
-        yaw = _tightening_yaw(np.asarray(tcp_rotation))
+        tcp, rotation = np.asarray(tcp_position), np.asarray(tcp_rotation)
+        yaw = _tightening_yaw(rotation)
         if not holding:
             self._gripped = False
-            return wrench
+            return np.zeros(6)
         if not self._gripped:
-            if not self.graspable(np.asarray(tcp_position)):
-                return wrench
-            self._gripped, self._yaw, self._turn = True, yaw, self.angle
+            if not self.graspable(tcp):
+                return np.zeros(6)
+            self._gripped = True
+            self._yaw, self._turn = yaw, self.angle
+            self._top = float(tcp[2]) + self.depth
+            self._in_hand = (rotation.T @ (self.tip - tcp), rotation.T @ self.axis)
+        if self.caught:
+            return self._turned(dt, tcp, yaw)
+        self.tip = rotation @ self._in_hand[0] + tcp
+        self.axis = rotation @ self._in_hand[1]
+        depth = catch_depth(self.tip, float(self.axis[2]))
+        if depth is not None:
+            self.caught, self.angle = True, depth * 2.0 * math.pi / self.pitch
+            self._yaw, self._turn, self._top = yaw, self.angle, float(tcp[2]) + depth
+            return np.zeros(6)
+        return self._contact(tcp)
+
+    def _contact(self, tcp: np.ndarray) -> np.ndarray:
+        """The cube's push on the round tip of a carried screw, as a wrench at the TCP."""
+        wrench = np.zeros(6)
+        centre = self.tip + TIP_RADIUS * self.axis
+        dx, dy = float(centre[0]) - self.axis_xy[0], float(centre[1]) - self.axis_xy[1]
+        if max(abs(dx), abs(dy)) > CUBE_HALF or float(centre[2]) > CUBE_TOP_Z + TIP_RADIUS:
+            return wrench
+        off = math.hypot(dx, dy)
+        if off >= HOLE_RADIUS:  # over the top face
+            normal = np.array([0.0, 0.0, 1.0])
+            depth = CUBE_TOP_Z + TIP_RADIUS - float(centre[2])
+        elif off > HOLE_RADIUS - TIP_RADIUS and off > 0:  # on the hole's edge
+            x, y = self.axis_xy
+            scale = HOLE_RADIUS / off
+            edge = np.array([x + dx * scale, y + dy * scale, CUBE_TOP_Z])
+            gap = centre - edge
+            distance = float(np.linalg.norm(gap))
+            normal, depth = gap / distance, TIP_RADIUS - distance
+        else:  # in the hole
+            return wrench
+        if depth <= 0 or float(centre[2]) < CUBE_TOP_Z - TIP_RADIUS:
+            return wrench
+        force = self.contact_stiffness * depth * normal
+        wrench[:3] = force
+        wrench[3:] = np.cross(centre - TIP_RADIUS * normal - tcp, force)
+        return wrench
+
+    def _turned(self, dt: float, tcp: np.ndarray, yaw: float) -> np.ndarray:
+        """The caught screw follows the hand's turn; the thread holds the hand's height."""
+        wrench = np.zeros(6)
         self._turn += _wrap(yaw - self._yaw)
         self._yaw = yaw
         old = self.angle
         self.angle = min(max(self._turn, -math.pi), self.max_angle)
+        self.tip = np.array([*self.axis_xy, CUBE_TOP_Z - CATCH_DEPTH - self.depth])
+        self.axis = np.array([0.0, 0.0, 1.0])
         speed = (self.angle - old) / dt if dt > 0 else 0.0
         resist = thread_torque(self.depth) * math.tanh(speed / 0.05)
         resist += self.stop_stiffness * max(self._turn - self.max_angle, 0.0)
         # a tightening turn is about world -z; the screw pushes back about +z
         wrench[5] = resist
+        wrench[2] = -self.axial_stiffness * (float(tcp[2]) - (self._top - self.depth))
         return wrench
 
     def measurements(self) -> dict[str, float | bool]:
@@ -329,6 +420,11 @@ class ScrewTwin:
             "screw_angle": self.angle,
             "screw_bottomed": self.depth >= self.target_depth - 1e-4,
             "thread_torque": thread_torque(self.depth),
+            "thread_caught": self.caught,
+            "screw_x": float(self.tip[0]),
+            "screw_y": float(self.tip[1]),
+            "screw_z": float(self.tip[2]),
+            "screw_tilt": math.acos(min(max(float(self.axis[2]), -1.0), 1.0)),
         }
 
 

@@ -95,6 +95,11 @@ class PinocchioPlant:
         """Finger position [m] where the fingers stop on a grasped fixture part (0: none)."""
         """Environment wrench on the hand subtree at the ft site, world axes."""
 
+    @property
+    def fixture(self) -> scene_hooks.FixtureTwin | None:
+        """The scene's analytic fixture twin, if it has one."""
+        return self._fixture
+
     def _in_body(self, body: int, world_point: np.ndarray) -> np.ndarray:
         rotation = self.data.xmat[body].reshape(3, 3)
         return rotation.T @ (world_point - self.data.xpos[body])

@@ -1,14 +1,14 @@
 """Physics of the screwing cell (adapters/models/screwing.xml) and its analytic twin.
 
-Fixture tests drive the screw hinge directly with a stiff PD "test hand" (no arm control); the
-arm is held up by gravity compensation so that it stays out of the way.
+Fixture tests drive the screw directly: placed by hand, or turned through the thread's hinge
+with a stiff PD "test hand" (no arm control); the arm is held up by gravity compensation so that
+it stays out of the way.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
-from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -18,17 +18,19 @@ import pytest
 from lightrocks.adapters import scenes
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
+from lightrocks.adapters.scene_registry import load_model
 from lightrocks.runtime.contract import StopCondition
 
-SCENE = Path(scenes.__file__).parent / "models" / "screwing.xml"
 HALF_TURN = math.pi
+HOLE = np.array([*scenes.SCREW_AXIS_XY, scenes.CUBE_TOP_Z])
+"""The hole's mouth on the cube top."""
 
 
 class Cell:
-    """The screwing scene with a PD drive on the screw hinge."""
+    """The screwing scene with a PD drive on the thread's hinge."""
 
     def __init__(self) -> None:
-        self.model = mujoco.MjModel.from_xml_path(str(SCENE))
+        self.model = load_model("screwing")
         self.data = mujoco.MjData(self.model)
         hinge = self.model.joint("screw_hinge")
         self.hinge_q = int(hinge.qposadr[0])
@@ -43,12 +45,20 @@ class Cell:
     def values(self) -> dict[str, float | bool]:
         return scenes.measurements("screwing", self.model, self.data)
 
-    def step(self, hinge_torque: float = 0.0) -> None:
+    def step(self, hinge_torque: float = 0.0, steps: int = 1) -> None:
         d = self.data
-        d.qfrc_applied[self.arm_dofs] = d.qfrc_bias[self.arm_dofs]
-        d.qfrc_applied[self.hinge_v] = hinge_torque
-        scenes.scene_step("screwing", self.model, d)
-        mujoco.mj_step(self.model, d)
+        for _ in range(steps):
+            d.qfrc_applied[self.arm_dofs] = d.qfrc_bias[self.arm_dofs]
+            d.qfrc_applied[self.hinge_v] = hinge_torque
+            scenes.scene_step("screwing", self.model, d)
+            mujoco.mj_step(self.model, d)
+
+    def hand_start(self) -> None:
+        """Put the screw into the hole's mouth, axial, just past the catch: the thread holds."""
+        tip = HOLE - [0.0, 0.0, scenes.CATCH_DEPTH + 1e-5]
+        scenes.place_screw(self.model, self.data, tip)
+        self.step()
+        assert self.values()["thread_caught"]
 
     def turn(self, angle: float, duration: float = 1.0) -> np.ndarray:
         """Turn the screw by ``angle`` following a ramp; return the drive torque per step."""
@@ -66,39 +76,120 @@ class Cell:
 def test_scene_loads_with_named_bodies_and_options() -> None:
     cell = Cell()
     m = cell.model
-    for body in ("table", "cube", "screw", "hand", "finger_left"):
+    for body in ("table", "cube", "holder", "screw", "thread", "hand", "finger_left"):
         assert m.body(body).id >= 0
     assert m.opt.cone == mujoco.mjtCone.mjCONE_ELLIPTIC
     assert m.opt.impratio >= 10
     assert m.geom("screw_head").condim >= 4
-    screw = cell.data.body("screw").xpos
-    assert 0.45 <= math.hypot(screw[0], screw[1]) <= 0.6
+    assert not cell.data.eq_active[m.equality("thread_catch").id]
+
+
+def test_screw_stands_upright_in_its_holder_and_has_not_caught() -> None:
+    cell = Cell()
+    cell.step(steps=1000)
+    values = cell.values()
+    assert not values["thread_caught"]
+    assert abs(values["screw_depth"]) < 1e-6
+    assert [values["screw_x"], values["screw_y"], values["screw_z"]] == pytest.approx(
+        scenes.SCREW_START, abs=3e-4
+    )
+    assert values["screw_tilt"] < math.radians(1.5)
+
+
+def lower_into_hole(cell: Cell, offset: float, tilt: float, steps: int = 1500) -> None:
+    """Hold the screw like a soft hand (position and orientation springs) with its tip over
+    the hole + ``offset`` (x), leaning by ``tilt``, and press it down with 2 N."""
+    screw = cell.model.body("screw").id
+    free = int(cell.model.joint("screw_free").dofadr[0])
+    target = HOLE[:2] + np.array([offset, 0.0])
+    scenes.place_screw(cell.model, cell.data, [*target, HOLE[2] + 0.002], tilt)
+    upright = np.array([math.cos(tilt / 2), math.sin(tilt / 2), 0.0, 0.0])
+    for _ in range(steps):
+        d = cell.data
+        error = np.zeros(3)
+        mujoco.mju_subQuat(error, upright, d.xquat[screw])
+        v = d.qvel[free : free + 6]
+        push = np.zeros(6)
+        push[:2] = 500.0 * (target - d.xpos[screw][:2]) - 5.0 * v[:2]
+        push[2] = -2.0 + float(cell.model.body_subtreemass[screw]) * 9.81
+        push[3:] = 0.2 * error - 0.002 * v[3:]
+        d.xfrc_applied[screw] = push
+        cell.step()
+    cell.data.xfrc_applied[screw] = 0.0
+
+
+def test_an_axial_screw_entering_the_hole_catches_the_thread_at_depth_zero() -> None:
+    cell = Cell()
+    lower_into_hole(cell, offset=0.0005, tilt=0.0)
+    values = cell.values()
+    assert values["thread_caught"]
+    assert values["screw_depth"] == pytest.approx(0.0, abs=3e-4)
+    assert math.hypot(values["screw_x"] - HOLE[0], values["screw_y"] - HOLE[1]) < 1e-4
+    assert values["screw_tilt"] < math.radians(0.2)  # drawn onto the axis by the thread
+
+
+def test_a_tilted_screw_slides_into_the_hole_without_catching() -> None:
+    cell = Cell()
+    lower_into_hole(cell, offset=0.0, tilt=math.radians(5.0))
+    values = cell.values()
+    assert not values["thread_caught"]
+    assert values["screw_z"] < HOLE[2] - scenes.CATCH_WINDOW  # it went in, past the catch
+    assert abs(values["screw_depth"]) < 1e-6
+
+
+def test_a_screw_beside_the_hole_rests_on_the_cube() -> None:
+    cell = Cell()
+    lower_into_hole(cell, offset=0.006, tilt=0.0, steps=800)
+    values = cell.values()
+    assert not values["thread_caught"]
+    assert values["screw_z"] == pytest.approx(HOLE[2], abs=4e-4)  # the wood gives a little
+
+
+@pytest.mark.parametrize(
+    ("tip", "axis_z", "caught"),
+    [
+        ((0.55, 0.0, 0.1490), 1.0, True),
+        ((0.55, 0.0, 0.1495), 1.0, False),  # not in far enough
+        ((0.55, 0.0, 0.1470), 1.0, False),  # past the first turn
+        ((0.5515, 0.0, 0.1490), 1.0, False),  # off the axis
+        ((0.55, 0.0, 0.1490), math.cos(math.radians(3.0)), False),  # tilted
+    ],
+)
+def test_catch_rule(tip, axis_z, caught) -> None:
+    assert (scenes.catch_depth(np.array(tip), axis_z) is not None) is caught
 
 
 def test_screw_is_held_by_the_thread() -> None:
     cell = Cell()
+    cell.hand_start()
     screw = cell.model.body("screw").id
-    for _ in range(500):
-        cell.step()
+    start = cell.values()["screw_depth"]
+    cell.step(steps=500)
     cell.data.xfrc_applied[screw, 2] = -5.0  # press down on the head: self-locking thread
-    for _ in range(500):
-        cell.step()
-    assert abs(cell.values()["screw_depth"]) < 5e-5
-    assert abs(cell.angle) < 0.01
+    cell.step(steps=500)
+    assert abs(cell.values()["screw_depth"] - start) < 5e-5
+    cell.data.xfrc_applied[screw, 2] = 5.0  # and pull: the thread holds too
+    cell.step(steps=500)
+    assert abs(cell.values()["screw_depth"] - start) < 5e-5
 
 
 def test_half_turn_advances_by_half_the_pitch() -> None:
     cell = Cell()
+    cell.hand_start()
+    start = cell.values()
     cell.turn(HALF_TURN)
     values = cell.values()
-    assert values["screw_angle"] == pytest.approx(HALF_TURN, abs=0.02)
-    assert values["screw_depth"] == pytest.approx(scenes.SCREW_PITCH / 2, abs=5e-5)
+    assert values["screw_angle"] - start["screw_angle"] == pytest.approx(HALF_TURN, abs=0.02)
+    advance = values["screw_depth"] - start["screw_depth"]
+    assert advance == pytest.approx(scenes.SCREW_PITCH / 2, abs=5e-5)
+    assert values["screw_z"] == pytest.approx(start["screw_z"] - advance, abs=5e-5)
     assert not values["screw_bottomed"]
 
 
 @pytest.mark.slow
 def test_torque_grows_with_depth_and_bottom_out_stops_the_screw() -> None:
     cell = Cell()
+    cell.hand_start()
     means = []
     for _ in range(8):
         torques = cell.turn(HALF_TURN, duration=0.5)
@@ -119,18 +210,50 @@ def test_torque_grows_with_depth_and_bottom_out_stops_the_screw() -> None:
     assert np.max(np.abs(torques)) > 1.0
 
 
+DOWN = np.diag([1.0, -1.0, -1.0])
+"""A gripper pointing down."""
+
+
+def test_screw_twin_is_carried_meets_the_cube_and_catches_only_on_the_axis() -> None:
+    twin = scenes.ScrewTwin()
+    start = np.array(scenes.SCREW_START)
+    grasp = start + np.array([0.0, 0.0, scenes.SCREW_LENGTH])
+    assert twin.graspable(grasp)
+    assert not twin.step(0.001, grasp, DOWN, holding=True).any()
+    # carried 4 mm beside the hole, the tip 1 mm into the cube top: pushed up
+    beside = HOLE + np.array([0.004, 0.0, scenes.SCREW_LENGTH - 0.001])
+    wrench = twin.step(0.001, beside, DOWN, holding=True)
+    assert wrench[2] == pytest.approx(twin.contact_stiffness * 0.001)
+    assert not twin.caught
+    # leaning 3 deg over the hole: not caught
+    leaning = DOWN @ pin.utils.rotate("x", math.radians(3.0))
+    tip_in = HOLE[2] - scenes.CATCH_DEPTH - 0.0002
+    tcp = np.array([*HOLE[:2], tip_in]) - leaning @ [0.0, 0.0, -scenes.SCREW_LENGTH]
+    twin.step(0.001, tcp, leaning, holding=True)
+    assert not twin.caught
+    # axial over the hole: caught at depth 0
+    twin.step(0.001, np.array([*HOLE[:2], tip_in + scenes.SCREW_LENGTH]), DOWN, holding=True)
+    assert twin.caught
+    assert twin.depth == pytest.approx(0.0002)
+
+
 def test_screw_twin_advances_and_bottoms_out() -> None:
     twin = scenes.ScrewTwin()
-    tcp = np.array([scenes.SCREW_AXIS_XY[0], scenes.SCREW_AXIS_XY[1], 0.181])
-    down = np.diag([1.0, -1.0, -1.0])  # gripper pointing down
-    assert twin.graspable(tcp)
+    grasp = np.array(scenes.SCREW_START) + np.array([0.0, 0.0, scenes.SCREW_LENGTH])
+    twin.step(0.001, grasp, DOWN, holding=True)
+    top = HOLE[2] - scenes.CATCH_DEPTH - 1e-6 + scenes.SCREW_LENGTH
+    tcp = np.array([*HOLE[:2], top])
+    twin.step(0.001, tcp, DOWN, holding=True)
+    assert twin.caught and twin.depth == pytest.approx(0.0, abs=1e-5)
+    tcp[2] += 0.001  # pulling up: the thread holds the hand down
+    assert twin.step(0.001, tcp, DOWN, holding=True)[2] < -10.0
     dt, yaw, torques = 0.001, 0.0, []
     for _ in range(9):  # one half-turn more than needed
         for _ in range(500):
             yaw += HALF_TURN / 500  # tightening: about the TCP z = world -z
             c, s = math.cos(yaw), math.sin(yaw)
-            rot = down @ np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
-            tcp[2] = 0.181 - twin.depth
+            rot = DOWN @ np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+            tcp[2] = top - twin.depth
             torques.append(twin.step(dt, tcp, rot, holding=True)[5])
         assert twin.step(dt, tcp, rot, holding=False)[5] == 0.0  # release, turn back
         yaw -= HALF_TURN
@@ -151,6 +274,16 @@ TURN_STIFFNESS = [2000.0, 2000.0, 800.0, 150.0, 150.0, 30.0]
 TIGHT = 0.32
 GRASP_Z = scenes.SCREW_HEAD_TOP_Z - 0.003
 """TCP height for the grasp: fingertips 4 mm above the head's underside."""
+
+
+def hand_start(adapter) -> None:
+    """Start with the screw in the hole and its thread caught, as a worker would leave it."""
+    plant = adapter.plant
+    if isinstance(adapter, MujocoAdapter):
+        tip = HOLE - [0.0, 0.0, scenes.CATCH_DEPTH + 1e-5]
+        scenes.place_screw(plant.model, plant.data, tip)
+    else:
+        plant.fixture.hand_start()
 
 
 def _screw_in(adapter, *, turns: int = 12) -> tuple[list[tuple[str, float, float]], float]:
@@ -216,6 +349,7 @@ def test_robot_screws_in_until_the_thread_tightens(adapter_class) -> None:
     """MuJoCo: the scene's physics; Pinocchio: the arm with the analytic ScrewTwin."""
     adapter = adapter_class("screwing")
     try:
+        hand_start(adapter)
         log, depth = _screw_in(adapter)
         values = adapter.measurements()
     finally:
