@@ -107,6 +107,8 @@ def test_measurements_are_readable() -> None:
     assert format_measurement("terminal1_latched", True) == "yes"
     assert format_measurement("screw_bottomed", False) == "no"
     assert format_measurement("terminals_latched", 3.0) == "3"
+    assert format_measurement("screw_x", 0.5501) == "550.1 mm"
+    assert format_measurement("screw_tilt", 0.0349) == "2.0 deg"
 
 
 @pytest.mark.parametrize(

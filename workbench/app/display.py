@@ -17,6 +17,10 @@ _SCALES = {
     "_depth": (1e3, "mm", 1),
     "_height": (1e3, "mm", 1),
     "_angle": (180 / math.pi, "deg", 1),
+    "_tilt": (180 / math.pi, "deg", 1),
+    "_x": (1e3, "mm", 1),
+    "_y": (1e3, "mm", 1),
+    "_z": (1e3, "mm", 1),
     "_torque": (1.0, "Nm", 3),
 }
 """Measurement key suffix -> factor from SI, unit, decimals."""
