@@ -45,7 +45,7 @@ CATCH_WINDOW = 0.0025
 """... and no deeper than this [m] below the top: further down, the first turn is missed."""
 CATCH_RADIUS = 0.001
 """... with the tip this close [m] to the hole axis ..."""
-CATCH_TILT = math.radians(2.0)
+CATCH_TILT = math.radians(3.0)
 """... and the screw's axis within this angle of the hole axis."""
 SCREW_LENGTH = 0.035
 """From the tip (the screw's frame origin) to the top of the head [m]."""

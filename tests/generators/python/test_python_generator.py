@@ -51,22 +51,30 @@ def _states(chart, kind="enter"):
 
 def test_screw_task_runs_to_success_on_the_dry_run(package):
     cls = component_class(package, "screwing.tasks.ScrewTask")
-    # every turn drives the screw 5 mm deeper (the hand travels down with it)
-    adapter = DryRunAdapter(sensors={"robot.travel": Vector3(0.0, 0.0, -0.005)})
+    # the arm's motions end as in the cell: the touch meets the cube with the tip in the hole
+    # and the tug feels the caught thread; every turn drives the screw 5 mm deeper (the hand
+    # travels down with it)
+    motions = ["reached", "reached", "lifted", "reached", "contact", "held"]
+    adapter = DryRunAdapter(
+        outcomes={"robot.moveCartesian": motions},
+        sensors={"robot.travel": Vector3(0.0, 0.0, -0.005)},
+    )
     chart = cls().start(adapter)
     assert chart.outcome == "screwed"
     skills = [s for s in _states(chart) if s.count("/") == 1]
     assert skills == [
         "ScrewTask/FindScrew",
         "ScrewTask/PickScrew",
-        "ScrewTask/HoldOverHole",
+        "ScrewTask/Carry",
+        "ScrewTask/Insert",
         "ScrewTask/DriveIn",
         "ScrewTask/LetGo",
         "ScrewTask/MoveAway",
     ]
     commands = [r["state"] for r in chart.trace if r["kind"] == "command"]
-    assert commands[:5] == [
+    assert commands[:6] == [
         "ScrewTask/FindScrew/Look",
+        "ScrewTask/FindScrew/LookAtCube",
         "ScrewTask/PickScrew/Open",
         "ScrewTask/PickScrew/Hover",
         "ScrewTask/PickScrew/Descend",
