@@ -7,13 +7,14 @@ succeeded fails here.
 
 from __future__ import annotations
 
+import json
 import math
 import shutil
 from pathlib import Path
 
 import pytest
 
-from lightrocks.adapters.scenes import SCREW_TARGET_DEPTH, goal_met
+from lightrocks.adapters.scenes import SCREW_AXIS_XY, SCREW_START, SCREW_TARGET_DEPTH, goal_met
 from lightrocks.workbench.app.run import RunResult, run_once
 from lightrocks.workbench.app.seeds import run_seeds
 
@@ -47,13 +48,57 @@ def tasks_in_order(result: RunResult) -> list[str]:
     return [task for i, task in enumerate(tasks) if i == 0 or tasks[i - 1] != task]
 
 
+def outcomes(trace: Path, state: str) -> list[str]:
+    """The outcomes of ``state`` in the order the trace recorded them."""
+    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    return [r["outcome"] for r in records if r["kind"] == "outcome" and r["state"] == state]
+
+
 @pytest.mark.parametrize("adapter", ["mujoco", "pinocchio"])
-def test_screw_task_drives_the_screw_home(adapter: str) -> None:
-    result = run_once(SCREW_TASK, [], [], adapter)
+def test_screw_task_carries_the_screw_to_the_hole_and_drives_it_home(
+    adapter: str, tmp_path: Path
+) -> None:
+    trace = tmp_path / "run.jsonl"
+    result = run_once(SCREW_TASK, [], [], adapter, trace=trace)
     assert screwed_home(result), result
-    assert result.measurements["screw_depth"] == pytest.approx(SCREW_TARGET_DEPTH, abs=0.5e-3)
-    drives = [path for path, _ in result.skills if path == "ScrewTask/DriveIn"]
-    assert len(drives) == 1
+    values = result.measurements
+    assert values["screw_depth"] == pytest.approx(SCREW_TARGET_DEPTH, abs=0.5e-3)
+    assert values["thread_caught"]
+    # the screw left its holder and stands in the hole, on its axis
+    assert math.dist(SCREW_START[:2], (values["screw_x"], values["screw_y"])) > 0.1
+    assert math.dist(SCREW_AXIS_XY, (values["screw_x"], values["screw_y"])) < 2e-4
+    skills = [path for path, _ in result.skills]
+    assert skills[:4] == [f"ScrewTask/{s}" for s in ("FindScrew", "PickScrew", "Carry", "Insert")]
+    assert skills.count("ScrewTask/DriveIn") == 1
+    assert outcomes(trace, "ScrewTask/Carry") == ["over"]
+    assert outcomes(trace, "ScrewTask/Insert") == ["caught"]
+
+
+def test_a_tilted_insertion_does_not_catch_and_the_task_straightens_and_tries_again(
+    tmp_path: Path,
+) -> None:
+    """The tool leans 6 deg on the first insertion: the tip goes into the hole, the thread does
+    not catch, the tug comes up free; the task pulls out, stands the tool straight, carries and
+    searches again."""
+    trace = tmp_path / "run.jsonl"
+    result = run_once(SCREW_TASK, [], ["tilt=6deg"], "mujoco", trace=trace)
+    assert outcomes(trace, "ScrewTask/Insert") == ["loose", "caught"]
+    assert outcomes(trace, "ScrewTask/Insert/Check")[0] == "free"
+    assert outcomes(trace, "ScrewTask/Retry") == ["clear"]
+    assert screwed_home(result), result
+
+
+def test_a_screw_that_does_not_catch_is_given_up_with_the_screw_in_the_hand(
+    tmp_path: Path,
+) -> None:
+    """With no retries, the tilted insertion ends the task: the hand retreats holding the
+    screw, which never caught."""
+    trace = tmp_path / "run.jsonl"
+    result = run_once(SCREW_TASK, [], ["tilt=6deg", "retries=0"], "mujoco", trace=trace)
+    assert result.outcome == "failed"
+    assert not result.measurements["thread_caught"]
+    assert outcomes(trace, "ScrewTask/Insert") == ["loose"]
+    assert outcomes(trace, "ScrewTask/GiveUp") == ["retreated"]
 
 
 @pytest.mark.parametrize("adapter", ["mujoco", "pinocchio"])
