@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections import ChainMap
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass, field, fields, is_dataclass
+from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 from typing import Any
@@ -300,7 +300,7 @@ class _Builder:
 
     def expressions(self, node: Any, values: ChainMap[str, tuple[Key, str]]) -> None:
         """Resolve every name and device member below a node of an expression or statement."""
-        for found in _walk(node):
+        for found in ast.walk(node):
             if isinstance(found, ast.Name) and found.name in values:
                 key, kind = values[found.name]
                 self.refer(found.position, found.name, kind, key)
@@ -392,15 +392,3 @@ def _declarations(elements: Iterable[Any]) -> Iterator[tuple[Any, str]]:
             yield element, "pseudostate"
         elif isinstance(element, ast.Event):
             yield element, "event"
-
-
-def _walk(node: Any) -> Iterator[Any]:
-    """Every dataclass node below ``node`` (tuples and optional fields included)."""
-    if isinstance(node, tuple | list):
-        for item in node:
-            yield from _walk(item)
-    elif is_dataclass(node) and not isinstance(node, ast.Position):
-        yield node
-        for item in fields(node):
-            if item.name != "position":
-                yield from _walk(getattr(node, item.name))
