@@ -75,8 +75,10 @@ class Typing:
 
     def environment(self, region: Region) -> dict[str, Type]:
         env: dict[str, Type] = {name: FunctionT(name) for name in BUILTIN_FUNCTIONS}
-        for symbol in self.models.workspace.scope(region.loaded).values():
+        workspace = self.models.workspace
+        for symbol in workspace.scope(region.loaded).values():
             if isinstance(symbol.node, ast.Cell):
+                workspace.use(region.loaded, symbol)
                 env.update(self._cell_members(symbol.loaded, symbol.node))
         chain = []
         current: Region | None = region
