@@ -25,7 +25,7 @@ from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.diagnostics import Diagnostic, Diagnostics
 from lightrocks.workbench.languages import extensions
 from lightrocks.workbench.modelpath import LIBRARY, ModelPath
-from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Workspace, _shown
+from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Workspace, shown_name
 
 
 class IncrementalCheck:
@@ -76,7 +76,7 @@ class IncrementalCheck:
         unchanged = {p: f for p, f in self.loaded.items() if p not in changed}
         context = check(sorted(affected), self.model_path, self.texts, True, unchanged)
         workspace = context.workspace
-        shown = {_shown(path) for path in affected}
+        shown = {shown_name(path) for path in affected}
         for file in shown:
             self.findings.pop(file, None)
         for finding in context.diagnostics.items:

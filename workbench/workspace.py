@@ -78,7 +78,7 @@ class Workspace:
         if path in self.unchanged:
             return self._add(self.unchanged[path])
         language = language_for(path.suffix)
-        shown = _shown(path)
+        shown = shown_name(path)
         if language is None:
             self.diagnostics.error(Position(shown, 1, 1), "LR0004", "not a model file")
             return None
@@ -240,7 +240,7 @@ class Workspace:
         return [loaded for path in self.targets if (loaded := self.files.get(path)) is not None]
 
 
-def _shown(path: Path) -> str:
+def shown_name(path: Path) -> str:
     """A path as users see it in findings: relative to the working folder when possible."""
     try:
         return str(path.relative_to(Path.cwd()))
