@@ -45,6 +45,27 @@ def test_a_count_of_a_length_is_found(installed: Environment, tmp_path: Path) ->
     assert "PEG0003: count needs an Integer, not Length" in result.stdout
 
 
+EDITOR_INDEX = """
+import sys
+from pathlib import Path
+from lightrocks.workbench.app.lsp.index import Index
+from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.workbench.incremental import IncrementalCheck
+models, examples, skill = (Path(a).resolve() for a in sys.argv[1:])
+checked = IncrementalCheck([models], [examples])
+checked.full()
+index = Index()
+index.update(checked.context.workspace, lambda p: Text(p.read_text()))
+occurrences = index.files[skill].occurrences
+print(sorted(o.name for o in occurrences if o.declaration and o.kind == "requirement"))
+"""
+
+
+def test_requirements_are_symbols_of_their_chart_for_editors(installed: Environment) -> None:
+    result = installed.run_python("-c", EDITOR_INDEX, str(MODELS), str(EXAMPLES), str(INSERT))
+    assert result.stdout.strip() == "['I1']", result.stderr
+
+
 def test_targets_without_a_mapping_refuse_extension_syntax_where_it_stands(
     installed: Environment, tmp_path: Path
 ) -> None:

@@ -22,6 +22,7 @@ from lightrocks.languages.domain.types import UNKNOWN, Type, describe
 from lightrocks.metamodel import ast, printer
 from lightrocks.workbench.app.lsp.spans import span
 from lightrocks.workbench.app.lsp.text import Text, contains
+from lightrocks.workbench.extensions import symbol_kind
 from lightrocks.workbench.workspace import Loaded, Workspace, shown_name
 
 Key = tuple[Path, int, int]  # the file and 0-based start of a declared name
@@ -444,3 +445,5 @@ def _declarations(elements: Iterable[Any]) -> Iterator[tuple[Any, str]]:
             yield element, "pseudostate"
         elif isinstance(element, ast.Event):
             yield element, "event"
+        elif (kind := symbol_kind(element)) is not None:
+            yield element, kind
