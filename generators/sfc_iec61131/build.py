@@ -369,6 +369,9 @@ class ComponentBuilder:
     and the exit, transition and entry statements of a transition run in a step of their own
     between source and target. An action's outcome is taken in a settle step that stops the
     command and runs the action's exit statements before any guard reads their effect.
+    Internal transitions run in their step's N action; time events are TON timers; history
+    is a variable per composite; an orthogonal state is one simultaneous divergence and one
+    simultaneous convergence (docs/generators.md).
     """
 
     def __init__(self, unit: UnitBuilder, component: Component) -> None:
@@ -432,15 +435,15 @@ class ComponentBuilder:
             if node.children is None and not node.info.state.is_final:
                 self.leaves[id(node)] = self._step("_".join(node.path)).name
                 block.states[self.leaves[id(node)]] = ("/".join(node.path), "")
-        for node in self._all(self.nodes):
-            if self._orthogonal(node):
-                self._declare_parallel(node)
+        orthogonal = [n for n in [None, *self._all(self.nodes)] if self._orthogonal(n)]
+        for node in orthogonal:
+            self._declare_parallel(node)
         self._start()
         for node in self._all(self.nodes):
             if id(node) in self.leaves:
                 self._leaf(node)
-            if self._orthogonal(node):
-                self._parallel(node)
+        for node in orthogonal:
+            self._parallel(node)
         for name, variable in self.events.items():
             block.inputs.append(Variable(variable, "BOOL", comment=f"event {name}: one cycle"))
         block.events = dict(self.events)
@@ -449,8 +452,6 @@ class ComponentBuilder:
     def _refuse_unmapped(self) -> None:
         """Constructs the SFC mapping does not cover end generation with their place,
         instead of a network that would mean something else."""
-        if self.region.orthogonal:
-            self._refuse(self.region.position, "orthogonal regions at the top of a statechart")
         for region in self.region.regions():
             for info in region.states.values():
                 inner = info.region
@@ -552,9 +553,10 @@ class ComponentBuilder:
 
     # -- orthogonal regions ------------------------------------------------------------------
 
-    def _declare_parallel(self, node: Node) -> None:
-        """The steps and variables of an orthogonal state, before anything leads there."""
-        where = "_".join(node.path)
+    def _declare_parallel(self, node: Node | None) -> None:
+        """The steps and variables of an orthogonal state (None: the statechart), before
+        anything leads there."""
+        where = "_".join(node.path) if node else self.component.name
         variables = [
             Variable(self.names.claim(f"{where}_abort"), "BOOL", comment="every region ends"),
             Variable(self.names.claim(f"{where}_way"), "DINT", comment="how it is left"),
@@ -563,23 +565,27 @@ class ComponentBuilder:
         self.block.locals += variables
         abort, way, final = (v.name for v in variables)
         fork = self._step(f"{where}_fork").name
-        ends = [self._step(f"{'_'.join(r.path)}_end").name for r in node.nested]
+        ends = [self._step(f"{'_'.join(r.path)}_end").name for r in self._nested(node)]
         watch = self._step(f"{where}_watch").name
         watched = self._step(f"{where}_watched").name
         left = self._step(f"{where}_left").name
         self.parallels[id(node)] = Parallel(fork, watch, watched, left, ends, abort, way, final)
-        self.block.regions += ["/".join(r.path) for r in node.nested]
+        self.block.regions += ["/".join(r.path) for r in self._nested(node)]
 
     def _rest(self, region: Node, outcome: str, statements: list[str], condition) -> Branch:
         """A region ends: resting in a final state, or with ``error``, which ends them all."""
         parallel = self.parallels[id(region.parent)]
-        end = parallel.ends[region.parent.nested.index(region)]
+        end = self._end(region)
         finals = [n.name for n in region.nested if n.info.state.is_final]
         if outcome in finals:
-            first = region is region.parent.nested[0]
+            first = region is self._nested(region.parent)[0]
             chosen = [f"{parallel.final} := {finals.index(outcome) + 1};"] if first else []
             return Branch(condition, statements + chosen, end)
         return Branch(condition, statements + self._abort(parallel, 1), end)
+
+    def _end(self, region: Node) -> str:
+        """The step in which ``region`` rests until every region has ended."""
+        return self.parallels[id(region.parent)].ends[self._nested(region.parent).index(region)]
 
     @staticmethod
     def _abort(parallel: Parallel, way: int) -> list[str]:
@@ -591,13 +597,15 @@ class ComponentBuilder:
             "END_IF;",
         ]
 
-    def _parallel(self, node: Node) -> None:
-        """Fork, watch, join: the network of an orthogonal state."""
+    def _parallel(self, node: Node | None) -> None:
+        """Fork, watch, join: the network of an orthogonal state (None: the statechart,
+        whose entry statements run before its fork)."""
         parallel = self.parallels[id(node)]
         lines = [f"{parallel.abort} := FALSE;", f"{parallel.way} := 0;", f"{parallel.final} := 0;"]
-        lines += self._entry(node)
+        lines += self._entry(node) if node else []
         targets = []
-        for index, region in enumerate(node.nested):
+        regions = self._nested(node)
+        for index, region in enumerate(regions):
             entries, leaf = self._enter(region)
             lines += entries
             if leaf.info.state.is_final:
@@ -615,6 +623,7 @@ class ComponentBuilder:
         # the watch: what leaves the orthogonal state from outside its regions
         ended = " AND ".join(f"{end}.X" for end in parallel.ends)
         outside = self._invariant_branches(node) + self._events(node, [])
+        before = len(self.block.transitions)
         staying = self._branches(
             parallel.watch,
             [
@@ -628,14 +637,20 @@ class ComponentBuilder:
             ],
         )  # fmt: skip
         self._body(parallel.watch, "N", staying + self._ticks(node))
+        # declared first, the watch reads the regions' step flags before any region moves:
+        # MatIEC clears a step's flag as soon as one of its transitions fires
+        added = self.block.transitions[before:]
+        first = [t for t in added if t.source == parallel.watch]
+        rest = [t for t in self.block.transitions if t not in first]
+        self.block.transitions[:] = first + rest
         name = self.names.claim(f"{parallel.left}_join")
         sources = [*parallel.ends, parallel.watched]
         self.block.transitions.append(
             Transition(name, sources[0], parallel.left, "TRUE", sources=sources)
         )
         # leaving: the regions' own exits (last region first), then the way taken
-        exits = [line for r in reversed(node.nested) for line in self._exits([r])]
-        first = node.nested[0]
+        exits = [line for r in reversed(regions) for line in self._exits([r])]
+        first = regions[0]
         finals = [n.name for n in first.nested if n.info.state.is_final]
         ways = [
             branch
@@ -760,17 +775,23 @@ class ComponentBuilder:
             lines += [] if self._orthogonal(node) else self._entry(node)
         return lines, node
 
-    @staticmethod
-    def _orthogonal(node: Node | None) -> bool:
-        return node is not None and node.info.region is not None and node.info.region.orthogonal
+    def _orthogonal(self, node: Node | None) -> bool:
+        """``node`` (None: the statechart) holds orthogonal regions."""
+        region = node.info.region if node else self.region
+        return region is not None and region.orthogonal
 
     def _in_region(self, node: Node) -> bool:
-        """``node`` is a region of an orthogonal state."""
+        """``node`` is a region of an orthogonal state or statechart."""
         return self._orthogonal(node.parent)
 
-    def _owners(self, node: Node) -> list[Node | None]:
+    def _nested(self, node: Node | None) -> list[Node]:
+        return node.nested if node else self.nodes
+
+    def _owners(self, node: Node | None) -> list[Node | None]:
         """The states whose transitions a leaf (or the watch of an orthogonal state) takes:
         up to its region, or up to the statechart itself (None)."""
+        if node is None:
+            return [None]
         owners: list[Node | None] = []
         for owner in node.chain():
             if self._in_region(owner):
@@ -949,6 +970,8 @@ class ComponentBuilder:
                             None, transition, entry, [self.execute, holds, guard]
                         )
             branches += [Branch([self.execute], [], self._exit("error"))]
+        elif self.region.orthogonal:
+            branches = [Branch([self.execute], entry, self.parallels[id(None)].fork)]
         else:
             initial = next((n for n in self.nodes if n.info.state.is_initial), None)
             if initial is None:
@@ -975,7 +998,7 @@ class ComponentBuilder:
         if owners[-1] is not None:  # in a region: ending every region comes first
             region = owners[-1].parent
             parallel = self.parallels[id(region.parent)]
-            end = parallel.ends[region.parent.nested.index(region)]
+            end = self._end(region)
             branches.insert(0, Branch([parallel.abort], stop + self._exits(owners), end))
         staying = self._branches(step, branches)
         self._body(step, "N", staying + self._ticks(node))
@@ -995,7 +1018,7 @@ class ComponentBuilder:
         internal transitions before those leaving it, declaration order. From an orthogonal
         state, an event fires only when no state inside it takes the event."""
         branches = []
-        imported = node.info.imported is not None or self._orthogonal(node)
+        imported = node is None or node.info.imported is not None or self._orthogonal(node)
         for owner in self._owners(node):
             region = owner.info.region if owner else self.region
             for transition in region.internal if region else ():
@@ -1003,7 +1026,7 @@ class ComponentBuilder:
                     raise GenerationError(
                         f"{transition.position}: {self.component.qualified_name}: the SFC "
                         "target does not map an internal transition over a running child "
-                        f"or over orthogonal regions ('{'/'.join(node.path)}')"
+                        "or over orthogonal regions"
                     )
                 guard = self._guard(transition.guard)
                 statements = self._statements(transition.action or ())

@@ -87,6 +87,10 @@ CONSTRUCTS = [
         ("history without memory", "Recorder", "again,pause,resume"),
         ("regions take one event", "Crossing", "start,+150ms,press,press,press,press,quit"),
         ("regions join and are left", "Crossing", "start,go,close,stop,close,start,reset,quit"),
+        ("an inner state takes the event first", "Crossing",
+         "start,press,press,press,+150ms,press,go,quit"),
+        ("regions of a statechart", "Junction", "press,+1100ms,press,go,close,stop,press,close"),
+        ("regions of a statechart join", "Junction", "+1200ms,press,press,close"),
     ]
 ] + [
     # Regions of a task: the arm snaps a terminal while the camera looks ahead. Only faults

@@ -121,7 +121,7 @@ def test_creation_time_follows_source_date_epoch(monkeypatch: pytest.MonkeyPatch
         generate("plcopen", [TURNSTILE])
 
 
-@pytest.mark.parametrize("name", ["Counter", "Router", "Lamp", "Recorder", "Crossing"])
+@pytest.mark.parametrize("name", ["Counter", "Router", "Lamp", "Recorder", "Crossing", "Junction"])
 def test_statechart_constructs_validate(schema: etree.XMLSchema, name: str) -> None:
     """Internal transitions, choice, time events, history and regions: the same network as
     ``sfc``."""

@@ -3,6 +3,8 @@ convergence, and the constructs around regions that still end generation with th
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from conftest import EXAMPLES, generate
 
@@ -10,12 +12,7 @@ from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.workbench.generators import GenerationError
 
 AHEAD = EXAMPLES / "din_rail_ahead" / "tasks" / "AssembleRailAhead.lr"
-
-TOP = """statechart Gate {
-  region Left { initial state A; }
-  region Right { initial state B; }
-}
-"""
+PLANT = Path(__file__).parent / "models" / "plant"
 
 DEEP = """statechart Gate {
   initial state Idle;
@@ -55,10 +52,19 @@ def test_a_task_with_regions_forks_and_joins_once() -> None:
     assert text.count("TO PressOn_fork\n") == 1  # every entry goes through the one fork
 
 
+def test_the_watch_reads_the_regions_before_they_move(tmp_path) -> None:
+    """MatIEC clears a step's flag once one of its transitions fires: the transitions that
+    read flags of region steps come first."""
+    text = generate("sfc", [PLANT / "Crossing.lr"], search=[PLANT.parent])["Crossing.st"]
+    transitions = [line for line in text.splitlines() if line.startswith("TRANSITION ")]
+    assert transitions[0].endswith("FROM Working_watch TO Working_watched")
+    conditions = text.split("FROM Working_watch TO Working_watch_to_Working_watched_do\n")[1]
+    assert "NOT ((Working_Traffic_Green.X AND TRUE) OR" in conditions.splitlines()[0]
+
+
 @pytest.mark.parametrize(
     ("model", "where", "what"),
     [
-        (TOP, "1:1", "regions at the top of a statechart"),
         (NESTED, "4:7", "orthogonal regions inside a region"),
         (DEEP, "8:5", "deep history over orthogonal regions"),
     ],
