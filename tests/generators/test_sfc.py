@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from conftest import RAIL_TASK, SCREW_IN, SCREW_TASK, assert_golden, generate
 from hypothesis import given
@@ -22,6 +24,18 @@ def test_both_example_tasks_pass_the_checker(units: dict[str, str]) -> None:
     assert sorted(units) == ["AssembleRail.st", "ScrewTask.st"]
     for text in units.values():
         assert check_sfc(text) == []
+
+
+@pytest.mark.parametrize(
+    "name", ["Counter", "Router", "Lamp", "Recorder", "Crossing", "Junction", "Player"]
+)
+def test_statechart_constructs_pass_the_checker(name: str) -> None:
+    """Internal transitions, choice, time events, history and regions (generation runs the
+    checker too; here every rule is asked directly)."""
+    plant = Path(__file__).parent / "models" / "plant"
+    text = generate("sfc", [plant / f"{name}.lr"], search=[plant.parent])[f"{name}.st"]
+    assert check_sfc(text) == []
+    assert "FUNCTION_BLOCK " + name in text
 
 
 @pytest.mark.parametrize("name", ["ScrewTask.st", "AssembleRail.st"])
