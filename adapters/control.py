@@ -49,12 +49,13 @@ class ArmState:
         """Joint positions then velocities, one array so that a matrix can act on both."""
         self.q = self.state[:NV]
         self.v = self.state[NV:]
-        self.tcp = pin.SE3.Identity()
+        self.tcp = self.data.oMf[self.tcp_id]
+        """TCP pose: a reference into ``data`` that every update moves."""
         self.position = np.zeros(3)
         """TCP position and rotation, copies of ``tcp``'s."""
         self.rotation = np.eye(3)
-        self.ft = pin.SE3.Identity()
-        """Pose of the wrist force/torque site."""
+        self.ft = self.data.oMf[self.ft_id]
+        """Pose of the wrist force/torque site (a reference into ``data`` as well)."""
         self.jacobian = np.zeros((6, ARM_DOF))
         """TCP Jacobian of the arm joints, LOCAL_WORLD_ALIGNED: rows are v, ω in world axes."""
         self.twist = np.zeros(6)
@@ -73,10 +74,9 @@ class ArmState:
         pin.computeJointJacobians(model, data, self.q)
         pin.updateFramePlacement(model, data, self.tcp_id)
         pin.updateFramePlacement(model, data, self.ft_id)
-        self.tcp = tcp = data.oMf[self.tcp_id]
+        tcp = self.tcp
         self.position = tcp.translation
         self.rotation = tcp.rotation
-        self.ft = data.oMf[self.ft_id]
         jacobian = pin.getFrameJacobian(model, data, self.tcp_id, pin.LOCAL_WORLD_ALIGNED)
         self.jacobian = jacobian[:, :ARM_DOF]
         self.twist = jacobian @ self.v
@@ -148,6 +148,9 @@ class CartesianImpedance:
         """Rows: position error, linear and angular error velocity, world axes."""
         self._local = np.zeros((3, 3))
         """The rows of ``_errors`` in task axes."""
+        self._position_error, self._rate_errors = self._errors[0], self._errors[1:].reshape(6)
+        self._local_position, self._local_rates = self._local[0], self._local[1:].reshape(6)
+        """Views of the rows, made once: a view costs a NumPy call too."""
         self._e_rot = np.zeros(3)
         self._nullspace_posture = np.zeros(ARM_DOF)
         self._nullspace_state = np.zeros((ARM_DOF, 2 * NV))
@@ -187,19 +190,18 @@ class CartesianImpedance:
             self._refresh_slow_terms(arm, jac, rot)
         self._slow_tick += 1
 
-        errors = self._errors
         if moving:
-            np.subtract(self._p0 + s * self._dp, pos, out=errors[0])
-            np.subtract(self._twist_set, twist, out=errors[1:].reshape(6))
+            np.subtract(self._p0 + s * self._dp, pos, out=self._position_error)
+            np.subtract(self._twist_set, twist, out=self._rate_errors)
             r_set = self._r0 @ pin.exp3(s * self._dr)
         else:
-            np.subtract(self._p_goal, pos, out=errors[0])
-            np.negative(twist, out=errors[1:].reshape(6))
+            np.subtract(self._p_goal, pos, out=self._position_error)
+            np.negative(twist, out=self._rate_errors)
             r_set = self._r_goal
-        local = np.matmul(errors, rot, out=self._local)  # row i: Rᵀ errors[i]
+        np.matmul(self._errors, rot, out=self._local)  # row i: Rᵀ errors[i]
         self._e_rot = e_rot = pin.log3(rot.T @ r_set)
         k, d = self.stiffness, self.damping
-        wrench = k * np.concatenate((local[0], e_rot)) + d * local[1:].reshape(6)
+        wrench = k * np.concatenate((self._local_position, e_rot)) + d * self._local_rates
         wrench = (wrench.reshape(2, 3) @ rot.T).reshape(6)  # back to world axes
         tau = jac.T @ wrench
         tau += arm.bias
