@@ -206,7 +206,8 @@ class RobotView:
 
     @property
     def travel(self) -> Vector3:
-        return Vector3(*(self._cell.arm.position - self._cell.travel_origin).tolist())
+        (x, y, z), (x0, y0, z0) = self._cell.arm.point, self._cell.travel_origin
+        return Vector3(x - x0, y - y0, z - z0)
 
     @property
     def turned(self) -> float:
@@ -306,7 +307,7 @@ class SimulatedCell:
         self.turned = 0.0
         self.peak_force = 0.0
         self._yaw = 0.0
-        self.travel_origin = np.zeros(3)
+        self.travel_origin = (0.0, 0.0, 0.0)
         self._r0 = np.eye(3).tolist()
         self.wrench_value: Wrench | None = None
         """The current tick's ``robot.wrench`` once a predicate has read it."""
@@ -480,7 +481,7 @@ class SimulatedCell:
     # -- the 1 kHz loop ------------------------------------------------------------------------
 
     def _start_command(self) -> None:
-        self.travel_origin = self.arm.tcp.translation.copy()
+        self.travel_origin = tuple(self.arm.tcp.translation.tolist())
         self.turned = 0.0
         self.peak_force = 0.0
         self._yaw = 0.0
@@ -500,7 +501,7 @@ class SimulatedCell:
         """Update kinematics and sensors from the plant state."""
         arm = self.arm
         arm.update(self.plant.q, self.plant.v)
-        self.wrist.update(self.plant.wrist(), arm.ft, arm.position)
+        self.wrist.update(self.plant.wrist(), arm.ft, arm.point)
         self.wrench_value = None
         fx, fy, fz = self.wrist.values[:3]
         self.peak_force = max(self.peak_force, math.sqrt(fx * fx + fy * fy + fz * fz))

@@ -14,6 +14,8 @@ and low-pass filtered (first order, ``CUTOFF_HZ``) against impact spikes of stif
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import pinocchio as pin
 
@@ -41,7 +43,7 @@ class WristSensor:
         self._alpha = DT / (tau + DT)
         self._weight = tuple(self.load_weight.tolist())
 
-    def update(self, raw: np.ndarray, ft: pin.SE3, tcp_position: np.ndarray) -> None:
+    def update(self, raw: np.ndarray, ft: pin.SE3, tcp_position: Sequence[float]) -> None:
         """Feed one raw reading (see module docstring) with the ft site pose and TCP position.
 
         Plain float arithmetic, the same operations in the same order as their NumPy form:
@@ -55,7 +57,7 @@ class WristSensor:
         tx = -sx - px - (ly * wz - lz * wy)
         ty = -sy - py - (lz * wx - lx * wz)
         tz = -sz - pz - (lx * wy - ly * wx)
-        (ax, ay, az), (bx, by, bz) = ft.translation.tolist(), tcp_position.tolist()
+        (ax, ay, az), (bx, by, bz) = ft.translation.tolist(), tcp_position
         dx, dy, dz = ax - bx, ay - by, az - bz
         tx += dy * fz - dz * fy
         ty += dz * fx - dx * fz
