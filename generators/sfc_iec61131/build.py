@@ -12,6 +12,7 @@ is an exit step that raises ``done`` and the outcome's output until ``execute`` 
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from lightrocks.generators.selection import is_action, reachable
@@ -32,7 +33,7 @@ from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, Component, R
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup
-from lightrocks.workbench.generators import GenerationError
+from lightrocks.workbench.generators import GenerationError, refuse_extensions
 
 DEFAULT_TIMEOUT = 30.0
 # The handshake of a device block, written by the integrator's driver (docs/generators.md).
@@ -324,6 +325,14 @@ class Branch:
     violated: list[Branch] = field(default_factory=list)  # where a broken postcondition goes
 
 
+def _lineage(component: Component) -> Iterator[Component]:
+    """A component and the bases it extends."""
+    current: Component | None = component
+    while current is not None:
+        yield current
+        current = current.base
+
+
 def _refuse_regions(component: Component) -> None:
     """Orthogonal regions would need simultaneous divergence and convergence, and a way to
     end every branch when one of them leaves: generation ends at the first region instead
@@ -351,6 +360,8 @@ class ComponentBuilder:
         self.unit = unit
         self.component = component
         self.region = component.region
+        for layer in _lineage(component):
+            refuse_extensions("SFC", layer.unit)
         _refuse_regions(component)
         layer = component.layer or "statechart"
         self.block = Block(

@@ -62,6 +62,7 @@ class Typing:
         self.models = models
         self.types = Types(models.workspace)
         self.findings: dict[str, list[Finding]] = defaultdict(list)
+        self.inferred: dict[str, list[tuple[ast.Expression, Type]]] = defaultdict(list)
         self._by_file: dict[str, Loaded] = {}
         for component in models.components:
             for region in component.region.regions():
@@ -75,8 +76,10 @@ class Typing:
 
     def environment(self, region: Region) -> dict[str, Type]:
         env: dict[str, Type] = {name: FunctionT(name) for name in BUILTIN_FUNCTIONS}
-        for symbol in self.models.workspace.scope(region.loaded).values():
+        workspace = self.models.workspace
+        for symbol in workspace.scope(region.loaded).values():
             if isinstance(symbol.node, ast.Cell):
+                workspace.use(region.loaded, symbol)
                 env.update(self._cell_members(symbol.loaded, symbol.node))
         chain = []
         current: Region | None = region
@@ -169,7 +172,9 @@ class Typing:
     # -- statements -----------------------------------------------------------------------
 
     def statement(self, statement: ast.Statement, env: dict[str, Type]) -> None:
-        if isinstance(statement, ast.Assignment):
+        if isinstance(statement, ast.ExtensionNode):
+            statement.infer(lambda part: self.infer(part, env))
+        elif isinstance(statement, ast.Assignment):
             target = self.assignable(statement.target, env)
             self.expect(statement.value, target, env, "assigned value")
         else:
@@ -177,6 +182,9 @@ class Typing:
 
     def do_statement(self, statement: ast.Statement, env: dict[str, Type]) -> None:
         """A ``do`` runs one device command, optionally storing what it returns."""
+        if isinstance(statement, ast.ExtensionNode):
+            self.report("LR0307", statement.position, "a do action must call a device command")
+            return
         call = statement.value if isinstance(statement, ast.Assignment) else statement.expression
         target = (
             self.assignable(statement.target, env)
@@ -352,6 +360,12 @@ class Typing:
     def infer(
         self, expression: ast.Expression, env: dict[str, Type], allow_command: bool = False
     ) -> Type:
+        """The type of an expression, kept by file for editors to show."""
+        found = self._infer(expression, env, allow_command)
+        self.inferred[expression.position.file].append((expression, found))
+        return found
+
+    def _infer(self, expression: ast.Expression, env: dict[str, Type], allow_command: bool) -> Type:
         match expression:
             case ast.Quantity():
                 result = quantity_of(expression)
@@ -395,6 +409,8 @@ class Typing:
                 return operand
             case ast.Binary():
                 return self._binary(expression, env)
+            case ast.ExtensionNode():
+                return expression.infer(lambda part: self.infer(part, env))
         return UNKNOWN
 
     def _unknown_unit(self, literal: ast.Quantity) -> None:
