@@ -51,9 +51,9 @@ def _states(chart, kind="enter"):
 
 def test_screw_task_runs_to_success_on_the_dry_run(package):
     cls = component_class(package, "screwing.tasks.ScrewTask")
-    # the arm's motions end as in the cell: the touch meets the cube with the tip in the hole
-    # and the push and the tug feel the caught thread; every turn drives the screw 5 mm deeper (the hand
-    # travels down with it)
+    # the arm's motions end as in the cell: the touch meets the cube with the tip in the hole,
+    # the push and the tug feel the caught thread; every turn drives the screw 5 mm deeper
+    # (the hand travels down with it)
     motions = ["reached", "reached", "lifted", "reached", "contact", "pressing", "held"]
     adapter = DryRunAdapter(
         outcomes={"robot.moveCartesian": motions},
