@@ -23,15 +23,15 @@ def test_the_run_is_aborted_where_asked(tmp_path: Path, tmp_path_factory) -> Non
     env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "cache")}
     command = [sys.executable, "-m", "lightrocks.workbench.app.cli", "run", SCREW_TASK]
     command += ["--adapter", "dryrun", "--trace", str(trace), "--monitor", "0"]
-    command += ["--abort-at", "ScrewTask.HoldOverHole"]
+    command += ["--abort-at", "ScrewTask.Carry"]
     done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 1, done.stderr
     assert "outcome: preempted" in done.stdout
     run = [json.loads(line) for line in trace.read_text().splitlines()]
     entered = [r["state"] for r in run if r["kind"] == "enter"]
-    assert entered[-1] == "ScrewTask/HoldOverHole", "the run went on"
+    assert entered[-1] == "ScrewTask/Carry", "the run went on"
     assert [r["kind"] for r in run[-2:]] == ["aborted", "finished"]
-    assert run[-2]["active"] == ["ScrewTask", "ScrewTask/HoldOverHole"]
+    assert run[-2]["active"] == ["ScrewTask", "ScrewTask/Carry"]
     assert run[-1]["outcome"] == "preempted"
     assert not [r for r in run if r["kind"] == "error"]
 

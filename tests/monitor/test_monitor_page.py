@@ -211,17 +211,17 @@ def test_step_breakpoint_and_abort(adapter: str, launch, browser, tmp_path: Path
 
 def test_breakpoint_from_the_command_line_and_resume_to_the_end(launch, browser) -> None:
     url, trace, process = launch(
-        "run", str(SCREW_TASK), "--adapter", "dryrun", "--break", "ScrewTask.HoldOverHole"
+        "run", str(SCREW_TASK), "--adapter", "dryrun", "--break", "ScrewTask.Carry"
     )
     page = Page(browser, url)
-    page.until(lambda: page.text("state") == "paused at ScrewTask/HoldOverHole")
-    assert page.active == "ScrewTask/HoldOverHole"
+    page.until(lambda: page.text("state") == "paused at ScrewTask/Carry")
+    assert page.active == "ScrewTask.Carry"
     page.press("resume")
     page.until(lambda: page.text("summary") == "outcome: screwed")
     page.until(lambda: page.text("state") == "run over")
     assert process.wait(timeout=WAIT) == 0
     run = records(trace)
-    assert [r.get("at") for r in run if r["kind"] == "paused"] == ["ScrewTask/HoldOverHole"]
+    assert [r.get("at") for r in run if r["kind"] == "paused"] == ["ScrewTask.Carry"]
     assert run[-1]["kind"] == "finished" and run[-1]["outcome"] == "screwed"
 
 
