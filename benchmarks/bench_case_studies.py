@@ -1,35 +1,40 @@
-"""Robustness of both case studies under perception noise, in MuJoCo.
+"""Robustness of the case studies under perception noise, in MuJoCo: the envelope.
 
-Run: ``.venv/bin/python benchmarks/bench_case_studies.py [seeds] [workers]`` (default 20 seeds,
-one worker per core). Each case study first runs once without noise in this process: the
-baseline. Then it runs once per seed with 2 mm / 2 deg camera noise (Gaussian, per axis and
-about a random axis) in worker processes. A run succeeds when the task ends in its success
-outcome and the scene's ground truth agrees (screw seated; all three terminals latched). The
-script prints, per case study, the successes with their 95 % Wilson interval, the simulated
-time of the noisy runs against the baseline's, and the wall time per simulated second.
+Run: ``.venv/bin/python benchmarks/bench_case_studies.py [--seeds N] [--seed-offset S]
+[--noise 0mm,0deg 2mm,2deg ...] [--case din_rail ...] [--workers K] [--plot FILE.png]``
+(default: 20 seeds from 0, 2 mm / 2 deg, every case study, one worker per core).
+
+Each case study runs once per seed and noise level (Gaussian camera noise, per axis and about a
+random axis) in worker processes. A run succeeds when the task ends in its success outcome and
+the scene's ground truth agrees (screw seated; all three terminals latched). Per case study and
+level the script prints the successes with their 95 % Wilson interval, the simulated time and
+the wall time per simulated second, and the seeds that failed. ``--plot`` draws success
+against noise, one line per case study, with the sweep's plot. Measure on seeds that were not
+used while tuning the models (e.g. ``--seed-offset 1000``).
 """
 
 from __future__ import annotations
 
+import argparse
 import math
 import statistics
-import sys
 import time
 from pathlib import Path
 
 from lightrocks.adapters.scenes import goal_met
-from lightrocks.workbench.app.run import RunResult, run_once
+from lightrocks.workbench.app.errors import RunError
+from lightrocks.workbench.app.run import RunResult
 from lightrocks.workbench.app.seeds import run_seeds, wilson
+from lightrocks.workbench.app.sweep import GridPoint, PointSummary, plot_png
+from lightrocks.workbench.app.values import Noise, parse_noise
 
 ROOT = Path(__file__).resolve().parents[1]
-NOISE = (0.002, math.radians(2.0))
 
-
-CASE_STUDIES = [  # (name, scene, task)
-    ("screwing", "screwing", ROOT / "examples/screwing/tasks/ScrewTask.lr"),
-    ("din_rail", "din_rail", ROOT / "examples/din_rail/tasks/AssembleRail.lr"),
-    ("din_rail_ahead", "din_rail", ROOT / "examples/din_rail_ahead/tasks/AssembleRailAhead.lr"),
-]
+CASE_STUDIES = {  # name: (scene, task)
+    "screwing": ("screwing", ROOT / "examples/screwing/tasks/ScrewTask.lr"),
+    "din_rail": ("din_rail", ROOT / "examples/din_rail/tasks/AssembleRail.lr"),
+    "din_rail_ahead": ("din_rail", ROOT / "examples/din_rail_ahead/tasks/AssembleRailAhead.lr"),
+}
 
 
 def succeeded(scene: str, result: RunResult) -> bool:
@@ -37,36 +42,58 @@ def succeeded(scene: str, result: RunResult) -> bool:
     return result.success and goal_met(scene, result.measurements)
 
 
+def label(noise: Noise) -> str:
+    return f"{noise[0] * 1e3:g} mm / {math.degrees(noise[1]):g} deg"
+
+
+def measure(name: str, seeds: range, noise: Noise, workers: int | None) -> PointSummary:
+    """Run one case study at one noise level over ``seeds`` and print its figures."""
+    scene, model = CASE_STUDIES[name]
+    start = time.perf_counter()
+    results = run_seeds(model, [], [], "mujoco", seeds, noise, workers=workers)
+    wall = time.perf_counter() - start
+    wins = sum(succeeded(scene, r) for r in results)
+    low, high = wilson(wins, len(results))
+    times = [r.time for r in results]
+    print(
+        f"{name:15} {label(noise):17} {wins:4}/{len(results):<4} "
+        f"{wins / len(results):6.1%}  [{low:6.1%}, {high:6.1%}]  "
+        f"sim {statistics.mean(times):5.1f} ± {statistics.pstdev(times):4.1f} s  "
+        f"wall {wall / sum(times):.3f} s per sim s"
+    )
+    believed = sum(r.success for r in results)
+    if believed != wins:
+        print(f"  the task believed it succeeded {believed} times")
+    failures = [f"{r.seed}: {r.outcome}" for r in results if not succeeded(scene, r)]
+    if failures:
+        print("  failed seeds " + "; ".join(failures))
+    return PointSummary(GridPoint((name,), noise), len(results), wins)
+
+
 def main() -> None:
-    seeds = int(sys.argv[1]) if len(sys.argv) > 1 else 20
-    workers = int(sys.argv[2]) if len(sys.argv) > 2 else None
-    print(f"{seeds} seeds per case study, perception noise 2 mm / 2 deg, MuJoCo")
-    for name, scene, model in CASE_STUDIES:
-        start = time.perf_counter()
-        baseline = run_once(model, [], [], "mujoco")
-        baseline_wall = time.perf_counter() - start
-        start = time.perf_counter()
-        results = run_seeds(model, [], [], "mujoco", range(seeds), NOISE, workers=workers)
-        wall = time.perf_counter() - start
-        wins = sum(succeeded(scene, r) for r in results)
-        believed = sum(r.success for r in results)
-        low, high = wilson(wins, seeds)
-        times = [r.time for r in results]
-        failures = [f"seed {r.seed}: {r.outcome}" for r in results if not succeeded(scene, r)]
-        print(f"\n{name}: {wins}/{seeds} succeeded (95 % interval {low:.0%}-{high:.0%})")
-        print(f"  task outcome says success: {believed}/{seeds}")
-        print(f"  baseline (no noise): {baseline.outcome}, {baseline.time:.1f} s simulated")
-        print(
-            f"  simulated time {statistics.mean(times):.1f} ± {statistics.pstdev(times):.1f} s "
-            f"(min {min(times):.1f}, max {max(times):.1f}), "
-            f"{statistics.mean(times) / baseline.time:.2f}x the baseline"
-        )
-        print(
-            f"  wall time: baseline {baseline_wall / baseline.time:.3f} s per simulated s; "
-            f"{seeds} seeds in {wall:.1f} s"
-        )
-        if failures:
-            print("  failed: " + "; ".join(failures))
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seeds", type=int, default=20, help="runs per case study and level")
+    parser.add_argument("--seed-offset", type=int, default=0, help="the first seed")
+    parser.add_argument(
+        "--noise", nargs="+", default=["2mm,2deg"], metavar="LENGTH,ANGLE", help="noise levels"
+    )
+    parser.add_argument("--case", nargs="+", choices=list(CASE_STUDIES), default=None)
+    parser.add_argument("--workers", type=int, help="processes (default: one per core)")
+    parser.add_argument("--plot", type=Path, help="write success against noise as PNG here")
+    args = parser.parse_args()
+    if args.seeds < 1:
+        parser.error("--seeds must be at least 1")
+    try:
+        levels = [parse_noise(text) for text in args.noise]
+    except RunError as error:
+        parser.error(str(error))
+    cases = [c for c in args.case or CASE_STUDIES if CASE_STUDIES[c][1].is_file()]
+    seeds = range(args.seed_offset, args.seed_offset + args.seeds)
+    print(f"seeds {seeds.start}..{seeds.stop - 1}, MuJoCo; success, 95 % Wilson interval")
+    summaries = [measure(name, seeds, noise, args.workers) for name in cases for noise in levels]
+    if args.plot:
+        args.plot.write_bytes(plot_png(f"seeds {seeds.start}-{seeds.stop - 1}", summaries))
+        print(f"plot written to {args.plot}")
 
 
 if __name__ == "__main__":
