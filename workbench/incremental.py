@@ -1,10 +1,16 @@
 """Incremental checking: after an edit, re-check only the files the edit can affect.
 
-A file depends on every file of the packages its names resolve through: the implicit
-library, its own package and the packages of its imports. These dependencies form a graph;
-an edit of one file affects that file and every file that reaches it in the graph. Only
-those files are loaded and checked again (parsing is answered by the content-keyed parse
-cache); the findings of all other files are kept from the previous run.
+Two graphs say what an edit can affect. The *use* graph has an edge from a file to every
+file whose declarations its names resolved to while it was checked. The *scope* graph has
+an edge from a file to every file of the packages its names may resolve through: the
+implicit library, its own package and the packages of its imports.
+
+An edit that keeps the names a file declares (and their kinds) changes only what those
+names mean: it affects the file and every file that reaches it in the use graph. An edit
+that adds, removes or re-kinds a name may change how names resolve anywhere in its scope:
+it affects every file that reaches it in the scope graph or the use graph. Only affected
+files are loaded and checked again (parsing is answered by the content-keyed parse cache);
+the findings of all other files are kept from the previous run.
 """
 
 from __future__ import annotations
@@ -16,10 +22,10 @@ from pathlib import Path
 import networkx as nx
 
 from lightrocks.workbench.check import CheckContext, check
-from lightrocks.workbench.diagnostics import Diagnostic
+from lightrocks.workbench.diagnostics import Diagnostic, Diagnostics
 from lightrocks.workbench.languages import extensions
-from lightrocks.workbench.modelpath import LIBRARY
-from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Workspace, _shown
+from lightrocks.workbench.modelpath import LIBRARY, ModelPath
+from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Workspace, shown_name
 
 
 class IncrementalCheck:
@@ -29,11 +35,14 @@ class IncrementalCheck:
         self.paths = [Path(p) for p in paths]
         self.model_path = [Path(p) for p in model_path]
         self.texts: dict[Path, str] = {}
-        self.graph: nx.DiGraph = nx.DiGraph()
+        self.graph: nx.DiGraph = nx.DiGraph()  # the scope graph
+        self.uses: nx.DiGraph = nx.DiGraph()
+        self.interfaces: dict[Path, frozenset[tuple[str, str]] | None] = {}
         self.findings: dict[str, list[Diagnostic]] = {}
         self.context: CheckContext | None = None
         self.package_files: Callable[[str], frozenset[Path]] = frozenset
         self.rechecked: set[Path] = set()
+        self.loaded: dict[Path, Loaded] = {}  # the latest load of every file, for reuse
 
     def full(self) -> list[Diagnostic]:
         """Check everything and rebuild the dependency graph."""
@@ -42,6 +51,10 @@ class IncrementalCheck:
         self.model_path = [root for root in workspace.model_path.roots if root != LIBRARY]
         self.package_files = cache(partial(_package_files, workspace))
         self.graph = dependency_graph(workspace, self.package_files)
+        self.uses = nx.DiGraph()
+        self.uses.add_nodes_from(self.graph)
+        self._record(workspace, self.graph)
+        self.loaded = _loaded(workspace)
         self.findings = {}
         for finding in self.context.diagnostics.items:
             self.findings.setdefault(finding.file, []).append(finding)
@@ -58,11 +71,12 @@ class IncrementalCheck:
                 self.texts[path] = text
         if self.context is None or any(path not in self.graph for path in changed):
             return self.full()
-        affected = set(changed)
-        for path in changed:
-            affected |= nx.ancestors(self.graph, path)
-        context = check(sorted(affected), self.model_path, self.texts)
-        shown = {_shown(path) for path in affected}
+        wide = any(self._parsed_interface(path) != self.interfaces.get(path) for path in changed)
+        affected = self._affected(changed, wide)
+        unchanged = {p: f for p, f in self.loaded.items() if p not in changed}
+        context = check(sorted(affected), self.model_path, self.texts, True, unchanged)
+        workspace = context.workspace
+        shown = {shown_name(path) for path in affected}
         for file in shown:
             self.findings.pop(file, None)
         for finding in context.diagnostics.items:
@@ -70,11 +84,40 @@ class IncrementalCheck:
                 self.findings.setdefault(finding.file, []).append(finding)
         for path in changed:  # only an edited file can have changed its imports
             self.graph.remove_edges_from(list(self.graph.out_edges(path)))
-            found = dependencies(context.workspace, path, self.package_files)
+            found = dependencies(workspace, path, self.package_files)
             self.graph.add_edges_from((path, dep) for dep in found)
+        self._record(workspace, affected)
+        for path in changed:
+            self.loaded.pop(path, None)
+        self.loaded.update(_loaded(workspace))
         self.context = context
         self.rechecked = affected
         return self.items
+
+    def _affected(self, changed: Mapping[Path, str | None], wide: bool) -> set[Path]:
+        affected = set(changed)
+        for path in changed:
+            affected |= nx.ancestors(self.uses, path)
+            if wide:
+                affected |= nx.ancestors(self.graph, path)
+        if wide:  # files that used an affected file are affected in turn
+            for path in list(affected):
+                affected |= nx.ancestors(self.uses, path)
+        return affected
+
+    def _parsed_interface(self, path: Path) -> frozenset[tuple[str, str]] | None:
+        """What an edited file declares now, from a parse of it alone (the parse cache keeps
+        the check that follows from parsing it again)."""
+        alone = Workspace(ModelPath([]), Diagnostics(), self.texts)
+        alone.load(path)
+        return _interface(alone, path)
+
+    def _record(self, workspace: Workspace, checked: Iterable[Path]) -> None:
+        """Take the uses and interfaces of checked files from the run that checked them."""
+        for path in checked:
+            self.uses.remove_edges_from(list(self.uses.out_edges(path)))
+            self.uses.add_edges_from((path, used) for used in workspace.uses.get(path, ()))
+            self.interfaces[path] = _interface(workspace, path)
 
     @property
     def items(self) -> list[Diagnostic]:
@@ -105,6 +148,15 @@ def dependencies(
     files = set().union(*(package_files(package) for package in packages))
     files.discard(path)
     return files
+
+
+def _loaded(workspace: Workspace) -> dict[Path, Loaded]:
+    return {path: loaded for path, loaded in workspace.files.items() if loaded is not None}
+
+
+def _interface(workspace: Workspace, path: Path) -> frozenset[tuple[str, str]] | None:
+    loaded = workspace.files.get(path)
+    return workspace.interface(loaded) if isinstance(loaded, Loaded) else None
 
 
 def _package_files(workspace: Workspace, package: str) -> frozenset[Path]:

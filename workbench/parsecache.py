@@ -19,6 +19,7 @@ from typing import Any, Protocol
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench.depth import TOO_DEEP, deepest, deepest_node
 from lightrocks.workbench.languages import Language
 
 
@@ -30,6 +31,7 @@ class Store(Protocol):
     def put(self, key: str, result: ast.Unit | SyntaxProblem) -> None: ...
 
 
+FORMAT = "2"  # what a stored result means: raised to retire every result stored before
 MEMORY_ENTRIES = 10_000  # a large workspace plus the keystroke states of an editing session
 _memory: dict[str, Any] = {}
 _store: Store | None = None
@@ -48,10 +50,7 @@ def parse(language: Language, text: str, shown: str) -> Any:
     if result is None and _store is not None:
         result = _store.get(key)
     if result is None:
-        try:
-            result = language.parse(text, shown)
-        except SyntaxProblem as problem:
-            result = problem
+        result = _parsed(language, text, shown)
         if _store is not None:
             _store.put(key, result)
     _memory.pop(key, None)
@@ -63,9 +62,24 @@ def parse(language: Language, text: str, shown: str) -> Any:
     return result
 
 
+def _parsed(language: Language, text: str, shown: str) -> Any:
+    """The unit of a text, or the problem that stops it: a syntax error, or nesting deeper
+    than later passes can walk (checked once per content, as the result is cached)."""
+    try:
+        unit = language.parse(text, shown)
+    except SyntaxProblem as problem:
+        return problem
+    except RecursionError:
+        where = deepest(text, shown)
+        return SyntaxProblem(TOO_DEEP, where.line, where.column)
+    where = deepest_node(unit)
+    return unit if where is None else SyntaxProblem(TOO_DEEP, where.line, where.column)
+
+
 def _key(language: Language, text: str, shown: str) -> str:
     digest = hashlib.blake2b(digest_size=20)
-    for part in (_version(), grammar_digest(language.parse.__module__), language.name, shown):
+    grammar = grammar_digest(language.parse.__module__)
+    for part in (FORMAT, _version(), grammar, language.name, shown):
         digest.update(part.encode("utf-8", "surrogatepass") + b"\x00")
     digest.update(text.encode("utf-8", "surrogatepass"))
     return digest.hexdigest()

@@ -8,7 +8,7 @@ that searches the whole model for every reference.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields, is_dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -52,26 +52,33 @@ class Workspace:
         model_path: ModelPath,
         diagnostics: Diagnostics,
         texts: Mapping[Path, str] | None = None,
+        unchanged: Mapping[Path, Loaded] | None = None,
     ) -> None:
         self.model_path = model_path
         self.diagnostics = diagnostics
         self.texts = texts or {}  # unsaved editor contents that replace files on disk
+        self.unchanged = unchanged or {}  # files known unchanged since an earlier load
         self.files: dict[Path, Loaded | None] = {}
         self.symbols: dict[str, Symbol] = {}
         self._packages: dict[str, dict[str, Symbol]] = {}
         self._loaded_packages: set[str] = set()
         self._scopes: dict[Path, dict[str, Symbol]] = {}
+        self.targets: dict[Path, None] | None = None  # the files CoCos report on; None: all
+        self.uses: dict[Path, set[Path]] = {}  # files whose declarations a file's names reached
 
     # -- loading --------------------------------------------------------------------------
 
-    def load(self, path: Path) -> Loaded | None:
+    def load(self, path: Path, resolved: bool = False) -> Loaded | None:
         """Parse a file once; problems become diagnostics and the file yields ``None``."""
-        path = path.resolve()
+        if not resolved:
+            path = path.resolve()
         if path in self.files:
             return self.files[path]
         self.files[path] = None
+        if path in self.unchanged:
+            return self._add(self.unchanged[path])
         language = language_for(path.suffix)
-        shown = _shown(path)
+        shown = shown_name(path)
         if language is None:
             self.diagnostics.error(Position(shown, 1, 1), "LR0004", "not a model file")
             return None
@@ -84,16 +91,12 @@ class Workspace:
             where = Position(shown, problem.line, problem.column)
             self.diagnostics.error(where, "LR0001", problem.message)
             return None
-        except RecursionError:
-            self.diagnostics.error(deepest(text, shown), "LR0001", TOO_DEEP)
-            return None
-        too_deep = deepest_node(unit)
-        if too_deep is not None:
-            self.diagnostics.error(too_deep, "LR0001", TOO_DEEP)
-            return None
-        loaded = Loaded(path, language, unit)
-        self.files[path] = loaded
-        for name, node in language.declarations(unit):
+        return self._add(Loaded(path, language, unit))
+
+    def _add(self, loaded: Loaded) -> Loaded:
+        self.files[loaded.path] = loaded
+        unit = loaded.unit
+        for name, node in loaded.language.declarations(unit):
             self._declare(f"{unit.package}.{name}" if unit.package else name, node, loaded)
         return loaded
 
@@ -150,9 +153,10 @@ class Workspace:
         if package not in self._loaded_packages:
             self._loaded_packages.add(package)
             for folder in self.model_path.package_folders(package):
+                folder = folder.resolve()
                 for path in sorted(folder.iterdir()):
                     if path.suffix in extensions() and path.is_file():
-                        self.load(path)
+                        self.load(path.resolve() if path.is_symlink() else path, resolved=True)
         return self._packages.get(package, {})
 
     # -- resolution -----------------------------------------------------------------------
@@ -208,65 +212,37 @@ class Workspace:
 
     def resolve(self, loaded: Loaded, name: str) -> Symbol | None:
         """A simple name through the file's scope, or a qualified name directly."""
-        if "." in name:
-            return self.lookup(name)
-        return self.scope(loaded).get(name)
+        symbol = self.lookup(name) if "." in name else self.scope(loaded).get(name)
+        if symbol is not None:
+            self.use(loaded, symbol)
+        return symbol
+
+    def use(self, loaded: Loaded, symbol: Symbol) -> None:
+        """Record that what ``loaded`` means depends on the declaration behind ``symbol``:
+        an edit of that declaration's file must re-check this one."""
+        if symbol.loaded.path != loaded.path:
+            self.uses.setdefault(loaded.path, set()).add(symbol.loaded.path)
+
+    def interface(self, loaded: Loaded) -> frozenset[tuple[str, str]]:
+        """The names a file declares, with their kinds: what other files' scopes see of it."""
+        return frozenset(
+            (name, type(node).__name__) for name, node in loaded.language.declarations(loaded.unit)
+        )
 
     def loaded_units(self) -> list[Loaded]:
         return [loaded for loaded in self.files.values() if loaded is not None]
 
+    def checked_units(self) -> list[Loaded]:
+        """The units CoCos report on: every loaded unit, or the targets of a partial check
+        (the files they import are loaded for their declarations only)."""
+        if self.targets is None:
+            return self.loaded_units()
+        return [loaded for path in self.targets if (loaded := self.files.get(path)) is not None]
 
-def _shown(path: Path) -> str:
+
+def shown_name(path: Path) -> str:
     """A path as users see it in findings: relative to the working folder when possible."""
     try:
         return str(path.relative_to(Path.cwd()))
     except ValueError:
         return str(path)
-
-
-MAX_DEPTH = 100
-"""Nesting of the syntax tree that later passes (typing, printing, generating) may walk
-recursively without running out of stack."""
-
-TOO_DEEP = (
-    f"nested too deeply (more than {MAX_DEPTH} levels): "
-    "split the expression with intermediate parameters"
-)
-
-
-def deepest_node(root: Any) -> Position | None:
-    """The position of the first node nested deeper than ``MAX_DEPTH``, found without
-    recursion; None when the tree is shallow enough."""
-    pending: list[tuple[Any, int, Position | None]] = [(root, 0, None)]
-    while pending:
-        node, depth, where = pending.pop()
-        if not is_dataclass(node):
-            continue
-        where = getattr(node, "position", where)
-        if depth > MAX_DEPTH:
-            return where
-        for item in fields(node):
-            value = getattr(node, item.name)
-            children = value if isinstance(value, tuple) else (value,)
-            pending.extend((child, depth + 1, where) for child in children)
-    return None
-
-
-def deepest(text: str, shown: str) -> Position:
-    """Where the text nests deepest in brackets, else the start of its longest line: the
-    best pointer to an expression too deep for the parser."""
-    depth, best, where = 0, 0, None
-    line, column = 1, 1
-    for char in text:
-        if char in "([{":
-            depth += 1
-            if depth > best:
-                best, where = depth, (line, column)
-        elif char in ")]}":
-            depth -= 1
-        line, column = (line + 1, 1) if char == "\n" else (line, column + 1)
-    if where is None or best < 8:
-        lines = text.splitlines() or [""]
-        longest = max(range(len(lines)), key=lambda i: len(lines[i]))
-        where = (longest + 1, len(lines[longest]) - len(lines[longest].lstrip()) + 1)
-    return Position(shown, *where)

@@ -23,7 +23,7 @@ Finding = tuple[ast.Position, str, str]
 
 
 def _domain_units(context: object) -> Iterator[Loaded]:
-    for loaded in context.workspace.loaded_units():
+    for loaded in context.workspace.checked_units():
         if isinstance(loaded.unit, ast.DomainUnit):
             yield loaded
 

@@ -105,7 +105,7 @@ def _duplicates(elements: list) -> Iterator[Finding]:
 @coco("LR0108", Severity.ERROR, "the package matches the folder on the model path")
 def package_matches_folder(context: object) -> Iterator[Finding]:
     a = analysis(context)
-    for loaded in a.workspace.loaded_units():
+    for loaded in a.workspace.checked_units():
         possible = a.workspace.model_path.packages_of(loaded.path)
         if possible and loaded.unit.package not in possible:
             expected = possible[-1]

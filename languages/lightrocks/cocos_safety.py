@@ -24,7 +24,7 @@ SCENE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 def _stereotypes(a: Analysis) -> Iterator[ast.Stereotype]:
     """Every stereotype of every loaded unit: statecharts, their states, devices and cells."""
-    for loaded in a.workspace.loaded_units():
+    for loaded in a.workspace.checked_units():
         unit = loaded.unit
         if isinstance(unit, ast.StatechartUnit):
             yield from unit.statechart.stereotypes

@@ -129,8 +129,14 @@ class ModelSet:
 
     @property
     def components(self) -> list[Component]:
+        """The components CoCos report on (see ``Workspace.checked_units``)."""
         self._build_all()
-        return [c for c in self._components.values() if c is not None]
+        targets = self.workspace.targets
+        return [
+            c
+            for c in self._components.values()
+            if c is not None and (targets is None or c.loaded.path in targets)
+        ]
 
     @property
     def references(self) -> list[tuple[str, str, str, ast.Position]]:
@@ -139,8 +145,8 @@ class ModelSet:
         return self._references
 
     def _build_all(self) -> None:
-        """Build every loaded statechart; building records its references."""
-        for loaded in self.workspace.loaded_units():
+        """Build every checked statechart; building records its references."""
+        for loaded in self.workspace.checked_units():
             if isinstance(loaded.unit, ast.StatechartUnit):
                 self.component(_qualified(loaded.unit))
 

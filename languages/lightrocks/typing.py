@@ -62,6 +62,7 @@ class Typing:
         self.models = models
         self.types = Types(models.workspace)
         self.findings: dict[str, list[Finding]] = defaultdict(list)
+        self.inferred: dict[str, list[tuple[ast.Expression, Type]]] = defaultdict(list)
         self._by_file: dict[str, Loaded] = {}
         for component in models.components:
             for region in component.region.regions():
@@ -75,8 +76,10 @@ class Typing:
 
     def environment(self, region: Region) -> dict[str, Type]:
         env: dict[str, Type] = {name: FunctionT(name) for name in BUILTIN_FUNCTIONS}
-        for symbol in self.models.workspace.scope(region.loaded).values():
+        workspace = self.models.workspace
+        for symbol in workspace.scope(region.loaded).values():
             if isinstance(symbol.node, ast.Cell):
+                workspace.use(region.loaded, symbol)
                 env.update(self._cell_members(symbol.loaded, symbol.node))
         chain = []
         current: Region | None = region
@@ -352,6 +355,12 @@ class Typing:
     def infer(
         self, expression: ast.Expression, env: dict[str, Type], allow_command: bool = False
     ) -> Type:
+        """The type of an expression, kept by file for editors to show."""
+        found = self._infer(expression, env, allow_command)
+        self.inferred[expression.position.file].append((expression, found))
+        return found
+
+    def _infer(self, expression: ast.Expression, env: dict[str, Type], allow_command: bool) -> Type:
         match expression:
             case ast.Quantity():
                 result = quantity_of(expression)

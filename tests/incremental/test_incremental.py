@@ -65,3 +65,31 @@ def test_fixing_an_imported_chart_clears_findings_of_importers(screwing: Path) -
     broken = incremental.update({imported: text[: len(text) // 2]})
     assert broken != clean
     assert incremental.update({imported: None}) == clean
+
+
+MEANING_EDITS = [
+    # (file below examples/, old, new): each keeps the names the file declares
+    ("robots/lwr.lrd", "sensor Wrench wrench;", "sensor Wrench force;"),
+    ("din_rail/cell/RailCell.lrd", "object terminal3", "object clip3"),
+    ("din_rail/actions/Seat.lr", "end condition", "end condition moved; end condition"),
+    ("din_rail/skills/CarryToSlot.lr", "end condition above;", "end condition over;"),
+    ("din_rail/skills/SnapOnRail.lr", "parameters {", "parameters {\n    Integer extra;"),
+    ("screwing/actions/TurnTool.lr", "end condition", "end condition stuck; end condition"),
+]
+
+
+@pytest.mark.parametrize(("file", "old", "new"), MEANING_EDITS, ids=[e[0] for e in MEANING_EDITS])
+def test_an_edit_of_what_a_declaration_means_reaches_its_users(
+    screwing: Path, file: str, old: str, new: str
+) -> None:
+    incremental = IncrementalCheck([screwing])
+    clean = incremental.full()
+    path = (screwing / file).resolve()
+    text = path.read_text(encoding="utf-8")
+    assert old in text
+    edited = text.replace(old, new, 1)
+    found = incremental.update({path: edited})
+    assert found == full_findings(screwing, {path: edited})
+    assert found != clean  # the edit changed what some file means
+    assert incremental.rechecked < set(incremental.graph)  # not a full check in disguise
+    assert incremental.update({path: None}) == full_findings(screwing, {})

@@ -212,6 +212,21 @@ async def test_hover_shows_units_signatures_and_imported_outcomes(
 
 
 @pytest.mark.asyncio
+async def test_hover_types_members_and_operators(client: LanguageClient, examples: Path) -> None:
+    approach = examples / "screwing" / "actions" / "Approach.lr"
+    text = approach.read_text(encoding="utf-8")
+    uri = await open_file(client, approach)
+    shown = {}
+    for word in ("force", "z", ">"):
+        where = cursor(text, "abs(robot.wrench.force.z) > maxForce", word)
+        found = await client.text_document_hover_async(lsp.HoverParams(document(uri), where))
+        shown[word] = found.contents.value
+    assert shown["force"] == "`robot.wrench.force : Force3`"
+    assert shown["z"].startswith("`robot.wrench.force.z : Force [")
+    assert shown[">"] == "`abs(robot.wrench.force.z) > maxForce : Boolean`"
+
+
+@pytest.mark.asyncio
 async def test_outline_nests_states_below_their_chart_and_composite_states(
     client: LanguageClient, examples: Path
 ) -> None:

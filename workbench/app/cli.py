@@ -19,6 +19,7 @@ from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import parsecache, report
 from lightrocks.workbench.app.parsestore import DiskStore
 from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.depth import TOO_DEEP, deepest
 from lightrocks.workbench.diagnostics import Diagnostics, Severity
 from lightrocks.workbench.extensions import language_extensions
 from lightrocks.workbench.files import write_atomic, write_tree
@@ -32,7 +33,6 @@ from lightrocks.workbench.generators import (
 )
 from lightrocks.workbench.languages import extensions, language_for, languages
 from lightrocks.workbench.modelpath import model_files
-from lightrocks.workbench.workspace import TOO_DEEP, deepest
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
 

@@ -7,7 +7,7 @@ import re
 from lsprotocol import types as lsp
 
 from lightrocks.metamodel.units import known_units
-from lightrocks.workbench.app.lsp.index import FileIndex
+from lightrocks.workbench.app.lsp.index import FileIndex, state_kind
 
 KEYWORDS = (
     "package", "import", "statechart", "state", "initial", "final", "parameters", "entry",
@@ -34,9 +34,12 @@ MEMBER = re.compile(r"([A-Za-z_]\w*)\.\w*$")
 UNIT = re.compile(r"\d\s+[\w/]*$")
 
 
-def completions(file: FileIndex | None, prefix: str) -> list[lsp.CompletionItem]:
+def completions(
+    file: FileIndex | None, prefix: str, position: lsp.Position
+) -> list[lsp.CompletionItem]:
     """Outcomes after ``Source -> Target``, device members after ``instance.``, units after
-    a number; otherwise the names in scope and the keywords."""
+    a number; otherwise the names in scope (states of the region at the cursor only) and
+    the keywords."""
     file = file or FileIndex()
     stimulus = STIMULUS.search(prefix)
     if stimulus and stimulus.group(1) in file.outcomes:
@@ -44,7 +47,12 @@ def completions(file: FileIndex | None, prefix: str) -> list[lsp.CompletionItem]
     member = MEMBER.search(prefix)
     if member:
         return [_item(n, kind) for n, kind in file.members.get(member.group(1), {}).items()]
-    items = [_item(name, kind) for name, kind in file.names.items()]
+    states = file.states_at(position)
+    items = [
+        _item(name, kind)
+        for name, kind in file.names.items()
+        if states is None or state_kind(kind) != "state" or name in states
+    ]
     if UNIT.search(prefix):
         items += [lsp.CompletionItem(u, kind=lsp.CompletionItemKind.Unit) for u in known_units()]
     items += [lsp.CompletionItem(k, kind=lsp.CompletionItemKind.Keyword) for k in KEYWORDS]

@@ -10,7 +10,7 @@ from lsprotocol import types as lsp
 from lightrocks.languages.domain.types import Types, describe
 from lightrocks.metamodel import ast, printer
 from lightrocks.metamodel.units import UnitError, lookup
-from lightrocks.workbench.app.lsp.index import Declared, Index, Occurrence
+from lightrocks.workbench.app.lsp.index import Declared, FileIndex, Index, Occurrence
 from lightrocks.workbench.app.lsp.text import Text
 from lightrocks.workbench.workspace import Workspace
 
@@ -47,6 +47,15 @@ def quantity_hover(text: Text, position: lsp.Position) -> lsp.Hover | None:
             )
             return lsp.Hover(lsp.MarkupContent(lsp.MarkupKind.Markdown, f"`{shown}`"), where)
     return None
+
+
+def expression_hover(file: FileIndex | None, position: lsp.Position) -> lsp.Hover | None:
+    """The type of the innermost expression under the cursor: an operator, a member, a call."""
+    found = file.expression_at(position) if file is not None else None
+    if found is None:
+        return None
+    where, shown = found
+    return lsp.Hover(lsp.MarkupContent(lsp.MarkupKind.Markdown, f"`{shown}`"), where)
 
 
 def describe_declared(declared: Declared, workspace: Workspace) -> str:

@@ -10,7 +10,7 @@ editor still completes and navigates while the user is typing.
 from __future__ import annotations
 
 from collections import ChainMap
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, fields, is_dataclass
 from functools import partial
 from pathlib import Path
@@ -18,9 +18,11 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
-from lightrocks.metamodel import ast
+from lightrocks.languages.domain.types import UNKNOWN, Type, describe
+from lightrocks.metamodel import ast, printer
+from lightrocks.workbench.app.lsp.spans import span
 from lightrocks.workbench.app.lsp.text import Text, contains
-from lightrocks.workbench.workspace import Loaded, Workspace
+from lightrocks.workbench.workspace import Loaded, Workspace, shown_name
 
 Key = tuple[Path, int, int]  # the file and 0-based start of a declared name
 
@@ -51,6 +53,21 @@ class FileIndex:
     outcomes: dict[str, tuple[str, ...]] = field(default_factory=dict)  # state -> outcomes
     members: dict[str, dict[str, str]] = field(default_factory=dict)  # instance -> member kinds
     outline: dict[Key | None, list[Key]] = field(default_factory=dict)  # declarations by parent
+    scopes: list[tuple[lsp.Range, frozenset[str]]] = field(default_factory=list)  # states seen
+    expressions: list[tuple[lsp.Range, str]] = field(default_factory=list)  # typed expressions
+
+    def expression_at(self, position: lsp.Position) -> tuple[lsp.Range, str] | None:
+        """The innermost typed expression around a position, with its text and type."""
+        around = [item for item in self.expressions if contains(item[0], position)]
+        return min(around, key=lambda item: _length(item[0]), default=None)
+
+    def states_at(self, position: lsp.Position) -> frozenset[str] | None:
+        """The states visible at a position: those of the innermost region around it and of
+        the regions enclosing that one; ``None`` outside every statechart body."""
+        around = [(r, names) for r, names in self.scopes if contains(r, position)]
+        if not around:
+            return None
+        return max(around, key=lambda item: (item[0].start.line, item[0].start.character))[1]
 
 
 BUILTIN_OUTCOMES = ("error", "timeout", "preempted")
@@ -61,15 +78,26 @@ class Index:
         self.files: dict[Path, FileIndex] = {}
         self.declared: dict[Key, Declared] = {}
 
-    def update(self, workspace: Workspace, text_of: Callable[[Path], Text]) -> None:
-        """Index again every file the workspace loaded."""
-        units = workspace.loaded_units()
+    def update(
+        self,
+        workspace: Workspace,
+        text_of: Callable[[Path], Text],
+        inferred: Mapping[str, list[tuple[ast.Expression, Type]]] | None = None,
+    ) -> None:
+        """Index again the files the check reported on, and files loaded for the first time;
+        ``inferred`` holds the types of the expressions of the checked files, by the file
+        name positions show."""
+        checked = workspace.checked_units()
+        known = {loaded.path for loaded in checked} | set(self.files)
+        units = checked + [u for u in workspace.loaded_units() if u.path not in known]
         paths = {loaded.path for loaded in units}
         self.declared = {k: d for k, d in self.declared.items() if k[0] not in paths}
         for loaded in units:
             builder = _Builder(workspace, loaded, text_of)
-            self.files[loaded.path] = builder.build()
+            file = self.files[loaded.path] = builder.build()
             self.declared.update(builder.declared)
+            typed = (inferred or {}).get(shown_name(loaded.path), ())
+            file.expressions = _typed_expressions(text_of(loaded.path), typed)
 
     def at(self, path: Path, position: lsp.Position) -> Occurrence | None:
         file = self.files.get(path.resolve())
@@ -164,7 +192,8 @@ class _Builder:
         if base is not None and isinstance(base[0], ast.Statechart):
             inherited = self.foreign_scope(base[1], base[0].elements)
         values: ChainMap[str, tuple[Key, str]] = ChainMap(self.cell_scope())
-        self.inside(key, lambda: self.region(chart.elements, ChainMap(inherited), values))
+        walk = partial(self.region, chart.elements, ChainMap(inherited), values, chart.position)
+        self.inside(key, walk)
 
     def stereotype_target(
         self, stereotypes: Iterable[ast.Stereotype], *names: str
@@ -216,7 +245,10 @@ class _Builder:
         elements: Iterable[Any],
         states: ChainMap[str, tuple[Key, str]],
         values: ChainMap[str, tuple[Key, str]],
+        owner: ast.Position,
     ) -> None:
+        """Index one region: the body of ``owner`` (a statechart, a composite state or an
+        orthogonal region), whose states hide those of sibling regions."""
         elements = list(_flatten(elements))
         states, values = states.new_child(), values.new_child()
         imported: dict[str, tuple[Any, Loaded]] = {}
@@ -229,6 +261,9 @@ class _Builder:
                 target = self.stereotype_target(element.stereotypes, "import")
                 if target is not None:
                     imported[element.name] = target
+        block = self.text_of(self.loaded.path).block(owner.line, owner.column)
+        seen = frozenset(n for n, (_, kind) in states.items() if state_kind(kind) == "state")
+        self.index.scopes.append((block, seen))
         for element in elements:
             if isinstance(element, ast.Parameter):
                 self.refer_symbol(element.position, element.type)
@@ -239,6 +274,8 @@ class _Builder:
                 self.inside(keys[id(element)], walk)
             elif isinstance(element, ast.Transition):
                 self.transition(element, imported, states, values)
+            elif isinstance(element, ast.Region):
+                self.region(element.elements, states, values, element.position)
             elif not isinstance(element, ast.Condition | ast.Pseudostate | ast.Event):
                 self.expressions(element, values)
             elif isinstance(element, ast.Condition):
@@ -269,7 +306,7 @@ class _Builder:
             self.expressions(argument.value, values)
         self.expressions(state.invariant, values)
         if state.body:
-            self.region(state.body, states, values)
+            self.region(state.body, states, values, state.position)
 
     def transition(
         self,
@@ -284,7 +321,7 @@ class _Builder:
         ):
             if name in states:
                 key, kind = states[name]
-                self.refer(position, name, _state_kind(kind), key)
+                self.refer(position, name, state_kind(kind), key)
         source = imported.get(transition.source)
         if transition.stimulus and source and isinstance(source[0], ast.Statechart):
             outcomes = self.foreign_scope(source[1], source[0].elements)
@@ -293,7 +330,7 @@ class _Builder:
                 self.refer(transition.stimulus_position, transition.stimulus, "end", key)
         elif transition.stimulus in states:
             key, kind = states[transition.stimulus]
-            self.refer(transition.stimulus_position, transition.stimulus, _state_kind(kind), key)
+            self.refer(transition.stimulus_position, transition.stimulus, state_kind(kind), key)
         for part in (transition.guard, transition.stimulus_arguments, transition.action):
             self.expressions(part, values)
         self.expressions(transition.postcondition, values)
@@ -365,7 +402,22 @@ _KINDS = {
 }
 
 
-def _state_kind(kind: str) -> str:
+def _typed_expressions(
+    text: Text, typed: Iterable[tuple[ast.Expression, Type]]
+) -> list[tuple[lsp.Range, str]]:
+    found = []
+    for expression, type_ in typed:
+        where = span(text, expression)
+        if where is not None and type_ is not UNKNOWN:
+            found.append((where, f"{printer.expression(expression)} : {describe(type_)}"))
+    return found
+
+
+def _length(where: lsp.Range) -> tuple[int, int]:
+    return (where.end.line - where.start.line, where.end.character - where.start.character)
+
+
+def state_kind(kind: str) -> str:
     return "state" if kind in ("state", "pseudostate") else kind
 
 

@@ -17,8 +17,8 @@ from pygls.uris import from_fs_path, to_fs_path
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.app.lsp import completion as completing
 from lightrocks.workbench.app.lsp import diagnostics, navigation
+from lightrocks.workbench.app.lsp.hover import expression_hover, quantity_hover
 from lightrocks.workbench.app.lsp.hover import hover as describe
-from lightrocks.workbench.app.lsp.hover import quantity_hover
 from lightrocks.workbench.app.lsp.index import Index
 from lightrocks.workbench.app.lsp.text import Text
 from lightrocks.workbench.diagnostics import Diagnostic
@@ -57,7 +57,10 @@ class LightRocksServer(LanguageServer):
                 self.checker.paths.append(path)  # a model opened from outside the workspace
             findings = self.checker.update({path: text})
         if self.checker.context is not None:
-            self.index.update(self.checker.context.workspace, self.text)
+            context = self.checker.context
+            analysis = context.cache.get("lightrocks")
+            inferred = analysis.typing.inferred if analysis is not None else None
+            self.index.update(context.workspace, self.text, inferred)
         by_file: dict[Path, list[Diagnostic]] = {}
         for finding in findings:
             by_file.setdefault(Path(finding.file).resolve(), []).append(finding)
@@ -152,7 +155,7 @@ def rename(ls: LightRocksServer, params: lsp.RenameParams) -> lsp.WorkspaceEdit 
 def completion(ls: LightRocksServer, params: lsp.CompletionParams) -> list[lsp.CompletionItem]:
     path = _path(params.text_document.uri)
     prefix = ls.text(path).prefix(params.position)
-    return completing.completions(ls.index.files.get(path), prefix)
+    return completing.completions(ls.index.files.get(path), prefix, params.position)
 
 
 @server.feature(lsp.TEXT_DOCUMENT_HOVER)
@@ -160,7 +163,9 @@ def hover(ls: LightRocksServer, params: lsp.HoverParams) -> lsp.Hover | None:
     path = _path(params.text_document.uri)
     found = ls.index.at(path, params.position)
     if found is None:
-        return quantity_hover(ls.text(path), params.position)
+        return quantity_hover(ls.text(path), params.position) or expression_hover(
+            ls.index.files.get(path), params.position
+        )
     if ls.checker is None or ls.checker.context is None:
         return None
     return describe(ls.index, found, ls.checker.context.workspace)

@@ -9,6 +9,14 @@ from functools import cached_property
 from lsprotocol import types as lsp
 
 WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+SKIPPED = (
+    r"//[^\n]*"  # a line comment
+    r"|/\*.*?(?:\*/|\Z)"  # a block comment, or an unclosed one
+    r"|\"(?:[^\"\\\n]|\\.)*\"?"  # a string, or an unclosed one
+    r"|'(?:[^'\\\n]|\\.)*'?"
+)
+BRACE_OR_SKIPPED = re.compile(SKIPPED + r"|[{}]", re.S)
+BRACKET_OR_SKIPPED = re.compile(SKIPPED + r"|[()\[\]]", re.S)
 
 
 class Text:
@@ -74,6 +82,21 @@ class Text:
         if position.line >= len(self.lines):
             return ""
         return self.lines[position.line][: position.character]
+
+    def block(self, line: int, column: int) -> lsp.Range:
+        """The braces of the first block at or after a 1-based model position, or what the
+        text holds of it while it is unclosed; comments and strings are skipped."""
+        start = self.offset(line - 1, column - 1)
+        depth, opened = 0, None
+        for match in BRACE_OR_SKIPPED.finditer(self.source, start):
+            if match.group() == "{":
+                depth += 1
+                opened = match.start() if opened is None else opened
+            elif match.group() == "}" and opened is not None:
+                depth -= 1
+                if depth == 0:
+                    return self.range(opened, match.end())
+        return self.range(start if opened is None else opened, len(self.source))
 
     def end(self) -> lsp.Position:
         return lsp.Position(len(self.lines) - 1, len(self.lines[-1]))
