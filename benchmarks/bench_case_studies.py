@@ -16,7 +16,9 @@ used while tuning the models (e.g. ``--seed-offset 1000``).
 from __future__ import annotations
 
 import argparse
+import csv
 import math
+import signal
 import statistics
 import time
 from pathlib import Path
@@ -47,10 +49,25 @@ def label(noise: Noise) -> str:
 
 
 def measure(name: str, seeds: range, noise: Noise, workers: int | None) -> PointSummary:
-    """Run one case study at one noise level over ``seeds`` and print its figures."""
+    """Run one case study at one noise level over ``seeds`` and print its figures. Ended
+    early (Ctrl-C, SIGTERM), it reports the runs that finished and raises KeyboardInterrupt."""
     scene, model = CASE_STUDIES[name]
     start = time.perf_counter()
-    results = run_seeds(model, [], [], "mujoco", seeds, noise, workers=workers)
+    results: list[RunResult] = []
+
+    def report(result: RunResult) -> None:  # as each run ends: a long sweep shows its progress
+        results.append(result)
+        verdict = "ok" if succeeded(scene, result) else "FAILED"
+        print(f"  seed {result.seed}: {result.outcome} {verdict}", flush=True)
+
+    interrupted = False
+    try:
+        run_seeds(model, [], [], "mujoco", seeds, noise, workers=workers, done=report)
+    except KeyboardInterrupt:
+        interrupted = True
+        print(f"  ended early: {len(results)} of {len(seeds)} runs finished")
+    if not results:
+        raise KeyboardInterrupt
     wall = time.perf_counter() - start
     wins = sum(succeeded(scene, r) for r in results)
     low, high = wilson(wins, len(results))
@@ -59,15 +76,51 @@ def measure(name: str, seeds: range, noise: Noise, workers: int | None) -> Point
         f"{name:15} {label(noise):17} {wins:4}/{len(results):<4} "
         f"{wins / len(results):6.1%}  [{low:6.1%}, {high:6.1%}]  "
         f"sim {statistics.mean(times):5.1f} ± {statistics.pstdev(times):4.1f} s  "
-        f"wall {wall / sum(times):.3f} s per sim s"
+        f"wall {wall / sum(times):.3f} s per sim s",
+        flush=True,
     )
     believed = sum(r.success for r in results)
     if believed != wins:
         print(f"  the task believed it succeeded {believed} times")
     failures = [f"{r.seed}: {r.outcome}" for r in results if not succeeded(scene, r)]
     if failures:
-        print("  failed seeds " + "; ".join(failures))
-    return PointSummary(GridPoint((name,), noise), len(results), wins)
+        print("  failed seeds " + "; ".join(sorted(failures)), flush=True)
+    summary = PointSummary(GridPoint((name,), noise), len(results), wins)
+    if interrupted:
+        raise PartialRun(summary)
+    return summary
+
+
+class PartialRun(KeyboardInterrupt):
+    """A sweep ended early, with the summary of the runs that finished."""
+
+    def __init__(self, summary: PointSummary) -> None:
+        super().__init__()
+        self.summary = summary
+
+
+def record(table: Path, seeds: range, summaries: list[PointSummary]) -> list[PointSummary]:
+    """Append the summaries to a CSV table and return every summary it holds, so that runs of
+    this script in parallel (say one per noise level) add up to one picture."""
+    fields = ["case", "noise_m", "noise_rad", "first_seed", "runs", "successes"]
+    new = not table.exists()
+    with table.open("a", newline="", encoding="utf-8") as stream:
+        writer = csv.writer(stream)
+        if new:
+            writer.writerow(fields)
+        for s in summaries:
+            writer.writerow([s.point.params[0], *s.point.noise, seeds.start, s.runs, s.successes])
+    with table.open(newline="", encoding="utf-8") as stream:
+        rows = list(csv.DictReader(stream))
+    rows.sort(key=lambda row: (row["case"], float(row["noise_m"]), float(row["noise_rad"])))
+    return [
+        PointSummary(
+            GridPoint((row["case"],), (float(row["noise_m"]), float(row["noise_rad"]))),
+            int(row["runs"]),
+            int(row["successes"]),
+        )
+        for row in rows
+    ]
 
 
 def main() -> None:
@@ -80,6 +133,9 @@ def main() -> None:
     parser.add_argument("--case", nargs="+", choices=list(CASE_STUDIES), default=None)
     parser.add_argument("--workers", type=int, help="processes (default: one per core)")
     parser.add_argument("--plot", type=Path, help="write success against noise as PNG here")
+    parser.add_argument(
+        "--table", type=Path, help="append the figures to this CSV; --plot then draws all of it"
+    )
     args = parser.parse_args()
     if args.seeds < 1:
         parser.error("--seeds must be at least 1")
@@ -89,10 +145,24 @@ def main() -> None:
         parser.error(str(error))
     cases = [c for c in args.case or CASE_STUDIES if CASE_STUDIES[c][1].is_file()]
     seeds = range(args.seed_offset, args.seed_offset + args.seeds)
-    print(f"seeds {seeds.start}..{seeds.stop - 1}, MuJoCo; success, 95 % Wilson interval")
-    summaries = [measure(name, seeds, noise, args.workers) for name in cases for noise in levels]
-    if args.plot:
-        args.plot.write_bytes(plot_png(f"seeds {seeds.start}-{seeds.stop - 1}", summaries))
+    print(
+        f"seeds {seeds.start}..{seeds.stop - 1}, MuJoCo; success, 95 % Wilson interval",
+        flush=True,
+    )
+    signal.signal(signal.SIGTERM, signal.default_int_handler)  # ends early like Ctrl-C
+    summaries: list[PointSummary] = []
+    try:
+        for name in cases:
+            for noise in levels:
+                summaries.append(measure(name, seeds, noise, args.workers))
+    except PartialRun as partial:
+        summaries.append(partial.summary)
+    except KeyboardInterrupt:
+        pass
+    if args.table:
+        summaries = record(args.table, seeds, summaries)
+    if args.plot and summaries:
+        args.plot.write_bytes(plot_png("case studies", summaries))
         print(f"plot written to {args.plot}")
 
 
