@@ -49,12 +49,15 @@ class ArmState:
         """Joint positions then velocities, one array so that a matrix can act on both."""
         self.q = self.state[:NV]
         self.v = self.state[NV:]
-        self.tcp = pin.SE3.Identity()
+        self.tcp = self.data.oMf[self.tcp_id]
+        """TCP pose: a reference into ``data`` that every update moves."""
         self.position = np.zeros(3)
         """TCP position and rotation, copies of ``tcp``'s."""
+        self.point = (0.0, 0.0, 0.0)
+        """``position`` as floats, for the readers that compute with floats."""
         self.rotation = np.eye(3)
-        self.ft = pin.SE3.Identity()
-        """Pose of the wrist force/torque site."""
+        self.ft = self.data.oMf[self.ft_id]
+        """Pose of the wrist force/torque site (a reference into ``data`` as well)."""
         self.jacobian = np.zeros((6, ARM_DOF))
         """TCP Jacobian of the arm joints, LOCAL_WORLD_ALIGNED: rows are v, ω in world axes."""
         self.twist = np.zeros(6)
@@ -73,10 +76,10 @@ class ArmState:
         pin.computeJointJacobians(model, data, self.q)
         pin.updateFramePlacement(model, data, self.tcp_id)
         pin.updateFramePlacement(model, data, self.ft_id)
-        self.tcp = tcp = data.oMf[self.tcp_id]
-        self.position = tcp.translation
+        tcp = self.tcp
+        self.position = position = tcp.translation
+        self.point = tuple(position.tolist())
         self.rotation = tcp.rotation
-        self.ft = data.oMf[self.ft_id]
         jacobian = pin.getFrameJacobian(model, data, self.tcp_id, pin.LOCAL_WORLD_ALIGNED)
         self.jacobian = jacobian[:, :ARM_DOF]
         self.twist = jacobian @ self.v
@@ -125,6 +128,9 @@ class CartesianImpedance:
         self.stiffness = np.asarray(stiffness, dtype=float)
         self.ratio = np.asarray(damping, dtype=float)
         self.damping = np.zeros(6)
+        self._k = tuple(self.stiffness.tolist())
+        self._d = (0.0,) * 6
+        """Stiffness and damping as floats for the per-tick wrench."""
         self.posture = arm.q[:ARM_DOF].copy()
         start = arm.tcp * task
         self._p0 = start.translation.copy()
@@ -132,6 +138,8 @@ class CartesianImpedance:
         self._p_goal = goal.translation.copy()
         self._r_goal = goal.rotation.copy()
         self._dp = self._p_goal - self._p0
+        self._line = (*self._p0.tolist(), *self._dp.tolist())
+        """Start and direction of the set point's straight line, as floats."""
         self._dr = pin.log3(self._r0.T @ self._r_goal)
         distance, angle = np.linalg.norm(self._dp), np.linalg.norm(self._dr)
         self.duration = max(distance / max(speed, 1e-9), angle / max(angular_speed, 1e-9))
@@ -148,6 +156,12 @@ class CartesianImpedance:
         """Rows: position error, linear and angular error velocity, world axes."""
         self._local = np.zeros((3, 3))
         """The rows of ``_errors`` in task axes."""
+        self._position_error, self._rate_errors = self._errors[0], self._errors[1:].reshape(6)
+        """Views of the rows, made once: a view costs a NumPy call too."""
+        self._wrench = np.zeros((2, 3))
+        """Task wrench in task axes (force row, torque row); ``_world`` in world axes."""
+        self._world = np.zeros((2, 3))
+        self._world_flat = self._world.reshape(6)
         self._e_rot = np.zeros(3)
         self._nullspace_posture = np.zeros(ARM_DOF)
         self._nullspace_state = np.zeros((ARM_DOF, 2 * NV))
@@ -163,6 +177,7 @@ class CartesianImpedance:
         lam = np.linalg.inv(lam_inv + 1e-6 * np.eye(6))
         lam_local = np.diag(_block_rotate(rotation, lam))
         self.damping = 2.0 * self.ratio * np.sqrt(self.stiffness * np.maximum(lam_local, 0.0))
+        self._d = tuple(self.damping.tolist())
         jbar = arm.mass_inv @ jac.T @ lam
         nullspace = np.eye(ARM_DOF) - jac.T @ jbar.T
         self._nullspace_posture = NULLSPACE_STIFFNESS * (nullspace @ self.posture)
@@ -187,21 +202,29 @@ class CartesianImpedance:
             self._refresh_slow_terms(arm, jac, rot)
         self._slow_tick += 1
 
-        errors = self._errors
         if moving:
-            np.subtract(self._p0 + s * self._dp, pos, out=errors[0])
-            np.subtract(self._twist_set, twist, out=errors[1:].reshape(6))
+            x0, y0, z0, dx, dy, dz = self._line
+            x, y, z = pos.tolist() if self._offset else arm.point
+            self._position_error[:] = (x0 + s * dx - x, y0 + s * dy - y, z0 + s * dz - z)
+            np.subtract(self._twist_set, twist, out=self._rate_errors)
             r_set = self._r0 @ pin.exp3(s * self._dr)
         else:
-            np.subtract(self._p_goal, pos, out=errors[0])
-            np.negative(twist, out=errors[1:].reshape(6))
+            np.subtract(self._p_goal, pos, out=self._position_error)
+            np.negative(twist, out=self._rate_errors)
             r_set = self._r_goal
-        local = np.matmul(errors, rot, out=self._local)  # row i: Rᵀ errors[i]
-        self._e_rot = e_rot = pin.log3(rot.T @ r_set)
-        k, d = self.stiffness, self.damping
-        wrench = k * np.concatenate((local[0], e_rot)) + d * local[1:].reshape(6)
-        wrench = (wrench.reshape(2, 3) @ rot.T).reshape(6)  # back to world axes
-        tau = jac.T @ wrench
+        np.matmul(self._errors, rot, out=self._local)  # row i: Rᵀ errors[i]
+        rot_t = rot.T
+        self._e_rot = e_rot = pin.log3(rot_t @ r_set)
+        (px, py, pz), (vx, vy, vz), (wx, wy, wz) = self._local.tolist()
+        ex, ey, ez = e_rot.tolist()
+        k0, k1, k2, k3, k4, k5 = self._k
+        d0, d1, d2, d3, d4, d5 = self._d
+        self._wrench[:] = (
+            (k0 * px + d0 * vx, k1 * py + d1 * vy, k2 * pz + d2 * vz),
+            (k3 * ex + d3 * wx, k4 * ey + d4 * wy, k5 * ez + d5 * wz),
+        )  # K e + D ė elementwise, as NumPy computes it
+        np.matmul(self._wrench, rot_t, out=self._world)  # back to world axes
+        tau = jac.T @ self._world_flat
         tau += arm.bias
         tau += self._nullspace_posture
         tau += self._nullspace_state @ arm.state

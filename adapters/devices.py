@@ -192,8 +192,8 @@ class RobotView:
         """Built at most once per tick: several predicates usually read it."""
         cell = self._cell
         if cell.wrench_value is None:
-            w = cell.wrist.wrench.tolist()
-            cell.wrench_value = Wrench(Vector3(*w[:3]), Vector3(*w[3:]))
+            fx, fy, fz, tx, ty, tz = cell.wrist.values
+            cell.wrench_value = Wrench(Vector3(fx, fy, fz), Vector3(tx, ty, tz))
         return cell.wrench_value
 
     @property
@@ -206,7 +206,8 @@ class RobotView:
 
     @property
     def travel(self) -> Vector3:
-        return Vector3(*(self._cell.arm.position - self._cell.travel_origin).tolist())
+        (x, y, z), (x0, y0, z0) = self._cell.arm.point, self._cell.travel_origin
+        return Vector3(x - x0, y - y0, z - z0)
 
     @property
     def turned(self) -> float:
@@ -306,8 +307,8 @@ class SimulatedCell:
         self.turned = 0.0
         self.peak_force = 0.0
         self._yaw = 0.0
-        self.travel_origin = np.zeros(3)
-        self._r0 = np.eye(3)
+        self.travel_origin = (0.0, 0.0, 0.0)
+        self._r0 = np.eye(3).tolist()
         self.wrench_value: Wrench | None = None
         """The current tick's ``robot.wrench`` once a predicate has read it."""
         self._live = LiveSnapshot(self)
@@ -364,19 +365,23 @@ class SimulatedCell:
         ends = [self.time + c.budget - DT / 2 for c in commands]
         results: list[CommandResult | None] = [None] * len(commands)
         live = self._live
+        ticked = [
+            (index, c, settled, value, _first_holding(c.stop), ends[index])
+            for index, (c, (settled, value)) in enumerate(zip(commands, started, strict=True))
+        ]
         running = commands[0]
         try:
             while None in results:
                 self._tick()
-                for index, (c, (settled, value)) in enumerate(zip(commands, started, strict=True)):
+                for index, c, settled, value, first_holding, end in ticked:
                     if results[index] is not None:
                         continue
                     running = c
                     if settled():
-                        fired = next((s for s in c.stop if s.holds(live)), None)
+                        fired = first_holding(live)
                         if fired is not None:
-                            results[index] = CommandResult(fired.name, value)
-                    if results[index] is None and self.time >= ends[index]:
+                            results[index] = CommandResult(fired, value)
+                    if results[index] is None and self.time >= end:
                         results[index] = CommandResult(TIMEOUT)
                     if results[index] is not None and c.device == "robot" and None in results:
                         self.hold()  # the other commands go on
@@ -476,11 +481,11 @@ class SimulatedCell:
     # -- the 1 kHz loop ------------------------------------------------------------------------
 
     def _start_command(self) -> None:
-        self.travel_origin = self.arm.tcp.translation.copy()
+        self.travel_origin = tuple(self.arm.tcp.translation.tolist())
         self.turned = 0.0
         self.peak_force = 0.0
         self._yaw = 0.0
-        self._r0 = self.arm.tcp.rotation.copy()
+        self._r0 = self.arm.tcp.rotation.tolist()
 
     def _make_wrist_sensor(self) -> WristSensor:
         """Load model of the hand subtree (mass, centre of mass in the ft frame) from MuJoCo."""
@@ -496,11 +501,14 @@ class SimulatedCell:
         """Update kinematics and sensors from the plant state."""
         arm = self.arm
         arm.update(self.plant.q, self.plant.v)
-        self.wrist.update(self.plant.wrist(), arm.ft, arm.position)
+        self.wrist.update(self.plant.wrist(), arm.ft, arm.point)
         self.wrench_value = None
-        force = self.wrist.wrench[:3]
-        self.peak_force = max(self.peak_force, math.sqrt(force @ force))
-        cos, sin, _ = (arm.rotation[:, 0] @ self._r0).tolist()  # first column of R₀ᵀ R
+        fx, fy, fz = self.wrist.values[:3]
+        self.peak_force = max(self.peak_force, math.sqrt(fx * fx + fy * fy + fz * fz))
+        (c0, _, _), (c1, _, _), (c2, _, _) = arm.rotation.tolist()
+        (a0, b0, _), (a1, b1, _), (a2, b2, _) = self._r0
+        cos = c0 * a0 + c1 * a1 + c2 * a2  # the first column of R₀ᵀ R, as NumPy sums it
+        sin = c0 * b0 + c1 * b1 + c2 * b2
         yaw = math.atan2(sin, cos)
         self.turned += (yaw - self._yaw + math.pi) % (2 * math.pi) - math.pi
         self._yaw = yaw
@@ -515,3 +523,17 @@ class SimulatedCell:
 
 def _always() -> bool:
     return True
+
+
+def _first_holding(stops: Sequence[StopCondition]) -> Callable[[Any], str | None]:
+    """The stop conditions as one function, evaluated every tick: the name of the first that
+    holds, in declaration order, or None."""
+    checks = tuple((stop.holds, stop.name) for stop in stops)
+
+    def first_holding(snapshot: Any) -> str | None:
+        for holds, name in checks:
+            if holds(snapshot):
+                return name
+        return None
+
+    return first_holding

@@ -31,6 +31,8 @@ from lightrocks.workbench.app.sweep import GridPoint, PointSummary, plot_png
 from lightrocks.workbench.app.values import Noise, parse_noise
 
 ROOT = Path(__file__).resolve().parents[1]
+GOAL = 0.95
+"""Share of noisy runs that must succeed."""
 
 CASE_STUDIES = {  # name: (scene, task)
     "screwing": ("screwing", ROOT / "examples/screwing/tasks/ScrewTask.lr"),
@@ -76,7 +78,8 @@ def measure(name: str, seeds: range, noise: Noise, workers: int | None) -> Point
         f"{name:15} {label(noise):17} {wins:4}/{len(results):<4} "
         f"{wins / len(results):6.1%}  [{low:6.1%}, {high:6.1%}]  "
         f"sim {statistics.mean(times):5.1f} ± {statistics.pstdev(times):4.1f} s  "
-        f"wall {wall / sum(times):.3f} s per sim s",
+        f"wall {wall / sum(times):.3f} s per sim s  "
+        f"goal >= {GOAL:.0%}: {'met' if wins >= GOAL * len(results) else 'NOT met'}",
         flush=True,
     )
     believed = sum(r.success for r in results)

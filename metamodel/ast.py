@@ -7,7 +7,10 @@ take no part in equality: a model printed and parsed again compares equal to the
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field, fields, is_dataclass
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -111,10 +114,33 @@ class Binary:
     position: Position = _position()
 
 
+class ExtensionNode(ABC):
+    """An expression or a statement that a language extension adds through the grammar hooks
+    ``ExpressionExtension`` and ``StatementExtension``.
+
+    Subclasses are frozen dataclasses with a ``position``. Every stage that meets one asks
+    the node itself: the printer for its text, typing for its type; generators render it
+    through the extension's templates, or refuse it with its position.
+    """
+
+    position: Position
+
+    @abstractmethod
+    def text(self, expression: Callable[[Expression], str]) -> str:
+        """The node as model text (a statement with its ``;``), given the text of each
+        sub-expression."""
+
+    @abstractmethod
+    def infer(self, infer: Callable[[Expression], Any]) -> Any:
+        """The node's type given the type of each sub-expression (types of
+        ``languages.domain.types``); a statement types its parts and returns ``None``."""
+
+
 Expression = (
     (Quantity | BooleanLiteral | StringLiteral | VectorLiteral | Name | Member | Call | Index)
     | Unary
     | Binary
+    | ExtensionNode
 )
 
 
@@ -134,7 +160,7 @@ class ExpressionStatement:
     position: Position = _position()
 
 
-Statement = Assignment | ExpressionStatement
+Statement = Assignment | ExpressionStatement | ExtensionNode
 
 
 # --- statecharts -------------------------------------------------------------------------
@@ -448,3 +474,20 @@ Unit = StatechartUnit | DomainUnit
 def stereotype(stereotypes: tuple[Stereotype, ...], name: str) -> Stereotype | None:
     """The stereotype called ``name``, if present."""
     return next((s for s in stereotypes if s.name == name), None)
+
+
+def walk(node: Any) -> Iterator[Any]:
+    """Every node at or below ``node``, parents before children, in source order of fields."""
+    if isinstance(node, tuple | list):
+        for item in node:
+            yield from walk(item)
+    elif is_dataclass(node) and not isinstance(node, Position):
+        yield node
+        for item in fields(node):
+            if item.name != "position":
+                yield from walk(getattr(node, item.name))
+
+
+def is_extension(node: Any) -> bool:
+    """A node a language extension contributed: every built-in node is defined here."""
+    return is_dataclass(node) and type(node).__module__ != __name__

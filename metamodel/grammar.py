@@ -34,8 +34,8 @@ class SyntaxProblem(Exception):
         self.column = column
 
 
-HOOKS = ("ChartExtension", "ElementExtension")
-"""Rules of the shared fragments that extensions fill (see statecharts.tx)."""
+HOOKS = ("ChartExtension", "ElementExtension", "StatementExtension", "ExpressionExtension")
+"""Rules of the shared fragments that extensions fill (see statecharts.tx, expressions.tx)."""
 
 _NOTHING = "/(?!)/"  # a pattern that never matches: the body of an unfilled hook
 

@@ -68,6 +68,8 @@ def expression(node: ast.Expression) -> str:
             return f"{_postfix_target(function)}({', '.join(arguments(args))})"
         case ast.Index(target=target, index=index):
             return f"{_postfix_target(target)}[{expression(index)}]"
+    if isinstance(node, ast.ExtensionNode):
+        return node.text(expression)
     raise TypeError(f"not an expression: {node!r}")
 
 
@@ -200,6 +202,8 @@ def fit(head: str, items: Sequence[str | Sequence[str]], tail: str, width: int) 
 
 def statement(node: ast.Statement, prefix: str = "", width: int = LINE_WIDTH) -> list[str]:
     """A statement after ``prefix``; the arguments of a call at its top break when too long."""
+    if isinstance(node, ast.ExtensionNode):
+        return [f"{prefix}{node.text(expression)}"]
     if isinstance(node, ast.Assignment):
         prefix += f"{expression(node.target)} = "
         value = node.value

@@ -114,6 +114,14 @@ class Executor:
         self._busy = False
         self._clock = 0.0
         self._idle = SimpleNamespace(time=0.0)
+        self._sent = ""  # the event of the running send(), and whether a transition took it
+        self._handled = True
+        tree = _states(top)
+        self._reactions = {state: _reactions(state) for state in tree}
+        self._timed = {state: _timed(state) for state in tree}
+        self._invariants = any(state.INVARIANTS for state in tree)
+        self._checks = self._invariants or adapter is not None  # adapter snapshots each step
+        self._tracing = trace.enabled  # looked at again at the start of every step
 
     # -- clock and sensors ----------------------------------------------------------------
 
@@ -139,8 +147,12 @@ class Executor:
             raise _Fault(f"adapter fault in {what}: {exc!r}", "") from None
 
     def _write(self, kind: str, **fields: Any) -> None:
-        self._clock = self.time
-        self.trace.write(self._clock, kind, **fields)
+        """One trace record now; nothing at all while the trace is disabled."""
+        if not self._tracing:
+            return
+        if self.adapter is not None:
+            self._clock = self.time
+        self.trace.record(self._clock, kind, fields)
 
     # -- public steps ---------------------------------------------------------------------
 
@@ -158,19 +170,19 @@ class Executor:
         if self._busy:
             self.events.append(event)
             return True
-        handled = []
+        self._sent, self._handled = event, True  # no answer: the event ended in an error
+        self._step(self._dispatch_sent)
+        return self._handled
 
-        def dispatch() -> Done:
-            self._write("event", name=event)
-            done = self._dispatch(event, self.snapshot())
-            handled.append(done is not False)
-            if done is False:
-                self._write("discarded", name=event)
-                return None
-            return done
-
-        self._step(dispatch)
-        return handled[0] if handled else True  # no answer: the event ended in an error
+    def _dispatch_sent(self) -> Done:
+        event = self._sent
+        self._write("event", name=event)
+        done = self._dispatch(event, self.snapshot())
+        self._handled = done is not False
+        if done is False:
+            self._write("discarded", name=event)
+            return None
+        return done
 
     def advance(self, seconds: float) -> None:
         """Move the virtual clock of a run without adapter; due time events fire on the way,
@@ -208,6 +220,7 @@ class Executor:
 
     def _step(self, begin: Any) -> None:
         self._busy = True
+        self._tracing = self.trace.enabled
         try:
             done = self._guarded(begin)
             while True:
@@ -223,7 +236,8 @@ class Executor:
                     source = done.action if isinstance(done, Preemption) else done[0]
                     done = done if self._is_active(source) else None
                     continue
-                done = self._guarded(self._check_invariants)
+                if self._checks:
+                    done = self._guarded(self._check_invariants)
                 if done is None and self.events and not self.finished:
                     event = self.events.popleft()
                     self._write("event", name=event)
@@ -321,10 +335,12 @@ class Executor:
             if initialize is not None:
                 initialize(s)
             state.on_entry(s)
-            self._arm(state, s)
-            violated = self._violated(state, s)
-            if violated is not None:
-                return violated
+            if self._timed[state]:
+                self._arm(state, s)
+            if state.INVARIANTS:
+                violated = self._violated(state, s)
+                if violated is not None:
+                    return violated
             if state.FINAL:
                 return (state.parent, state.name) if state.parent is not None else (state, "")
             if isinstance(state, Action):
@@ -435,14 +451,18 @@ class Executor:
     def _exit(self, state: State, s: Snapshot) -> None:
         """Leave ``state`` and its active descendants, innermost first (regions in reverse
         declaration order)."""
-        for child in reversed(_active_children(state)):
-            self._exit(child, s)
+        if isinstance(state, Parallel):
+            for region in reversed(state.regions()):
+                self._exit(region, s)
+        elif isinstance(state, Composite) and state.current is not None:
+            self._exit(state.current, s)
         try:
             state.on_exit(s)
         finally:  # left even when its exit action fails: the error belongs to the parent
             self._write("exit", state=state.path)
-            for timer in [t for t in self._timers if t[0] is state]:
-                del self._timers[timer]
+            if self._timers:
+                for timer in [t for t in self._timers if t[0] is state]:
+                    del self._timers[timer]
             parent = state.parent
             if isinstance(parent, Parallel):
                 parent.running.discard(state.name)
@@ -464,22 +484,17 @@ class Executor:
         return [] if self.finished else self._select(self.top, event, s)
 
     def _select(self, state: State, event: str, s: Snapshot) -> list[tuple[State, Transition]]:
-        inner = [found for child in _active_children(state) for found in
-                 self._select(child, event, s)]  # fmt: skip
-        if inner:
-            return inner
-        for transition in state.INTERNAL:
-            if transition.stimulus == event and (
-                transition.guard is None or transition.guard(state, s)
-            ):
-                return [(state, transition)]
-        parent = state.parent
-        if parent is None or event in _completions(state):
-            return []
-        for transition in parent.transitions_from(state.name):
-            if transition.stimulus == event and (
-                transition.guard is None or transition.guard(parent, s)
-            ):
+        if isinstance(state, Parallel):
+            inner = [found for region in state.regions() for found in
+                     self._select(region, event, s)]  # fmt: skip
+            if inner:
+                return inner
+        elif isinstance(state, Composite) and state.current is not None:
+            inner = self._select(state.current, event, s)
+            if inner:
+                return inner
+        for owner, transition in self._reactions[state].get(event, ()):
+            if transition.guard is None or transition.guard(owner, s):
                 return [(state, transition)]
         return []
 
@@ -492,6 +507,9 @@ class Executor:
         found = self._find(event, s)
         if not found:
             return False
+        if len(found) == 1:  # found among the active states just now: still active
+            state, transition = found[0]
+            return self._react(state, transition, s)
         dones = [self._react(state, t, s) for state, t in found if self._is_active(state)]
         dones = [done for done in dones if done is not None]
         self._queue.extend(dones[1:])
@@ -512,17 +530,13 @@ class Executor:
 
     def _arm(self, state: State, s: Snapshot) -> None:
         """Start the time events of a state just entered: its own and those leaving it."""
-        parent = state.parent
-        leaving = parent.transitions_from(state.name) if parent is not None else ()
-        for transition in leaving:
-            if transition.delay is not None:
-                self._timers[(state, transition)] = self.time + transition.delay(parent, s)
-        for transition in state.INTERNAL:
-            if transition.delay is not None:
-                self._timers[(state, transition)] = self.time + transition.delay(state, s)
+        for owner, transition in self._timed[state]:
+            self._timers[(state, transition)] = self.time + transition.delay(owner, s)
 
     def _due(self, now: float) -> Timer | None:
         """The pending time event with the earliest deadline not after ``now``."""
+        if not self._timers:
+            return None
         due = [(deadline, timer) for timer, deadline in self._timers.items() if deadline <= now]
         return min(due, key=lambda item: item[0])[1] if due else None
 
@@ -755,6 +769,8 @@ class Executor:
         if self.finished:
             return None
         s = self.snapshot()
+        if not self._invariants:
+            return None
         for state in self.active():
             violated = self._violated(state, s)
             if violated is not None:
@@ -778,6 +794,43 @@ def known_events(top: State) -> frozenset[str]:
         for child in top.children.values():
             found |= known_events(child)
     return frozenset(found)
+
+
+def _states(top: State) -> list[State]:
+    """Every state of the tree below ``top``, ``top`` first."""
+    found, pending = [], [top]
+    while pending:
+        state = pending.pop()
+        found.append(state)
+        pending += getattr(state, "children", {}).values()
+    return found
+
+
+def _reactions(state: State) -> dict[str, tuple[tuple[State, Transition], ...]]:
+    """The transitions an event may take from ``state``, by event, each with the state its
+    guard belongs to: its internal transitions, then those leaving it (unless the event is
+    one of its completions, which only its completion fires)."""
+    found: dict[str, list[tuple[State, Transition]]] = {}
+    for transition in state.INTERNAL:
+        found.setdefault(transition.stimulus, []).append((state, transition))
+    parent = state.parent
+    if parent is not None:
+        completions = _completions(state)
+        for transition in parent.transitions_from(state.name):
+            if transition.stimulus not in completions:
+                found.setdefault(transition.stimulus, []).append((parent, transition))
+    return {event: tuple(candidates) for event, candidates in found.items()}
+
+
+def _timed(state: State) -> tuple[tuple[State, Transition], ...]:
+    """The time events armed on entering ``state``: those leaving it, then its own; each
+    with the state its delay belongs to."""
+    parent = state.parent
+    leaving = parent.transitions_from(state.name) if parent is not None else ()
+    return tuple(
+        [(parent, t) for t in leaving if t.delay is not None]
+        + [(state, t) for t in state.INTERNAL if t.delay is not None]
+    )
 
 
 def _active_children(state: State) -> list[State]:

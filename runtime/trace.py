@@ -41,7 +41,10 @@ def to_json(value: Any) -> Any:
 class Trace:
     """Collects records in memory, optionally writes them as JSON lines, and tells listeners."""
 
-    def __init__(self, file: str | Path | IO[str] | None = None) -> None:
+    def __init__(self, file: str | Path | IO[str] | None = None, *, keep: bool = True) -> None:
+        self.keep = keep
+        """Whether records stay in memory (``records``); without it, a file or a listener, the
+        trace is disabled and the executor builds no record at all."""
         self.records: list[Record] = []
         self.listeners: list[Callable[[Record], None]] = []
         self._owned = isinstance(file, str | Path)
@@ -51,10 +54,23 @@ class Trace:
         self.failure: OSError | None = None
         """Why the file could not be written (a full disk): the records stay in memory and
         the run goes on, since a trace must never stop a robot half-way."""
+        self._time, self._rounded = math.nan, math.nan  # the last time written, and as written
+
+    @property
+    def enabled(self) -> bool:
+        """Whether a record would go anywhere."""
+        return self.keep or self._stream is not None or bool(self.listeners)
 
     def write(self, time: float, kind: str, **fields: Any) -> None:
-        record: Record = {"time": round(time, 9), "kind": kind, **fields}
-        self.records.append(record)
+        self.record(time, kind, fields)
+
+    def record(self, time: float, kind: str, fields: dict[str, Any]) -> None:
+        """``write`` with the fields as one dict (the executor's path, called per record)."""
+        if time != self._time:  # a step writes several records at one time
+            self._time, self._rounded = time, round(time, 9)
+        record: Record = {"time": self._rounded, "kind": kind, **fields}
+        if self.keep:
+            self.records.append(record)
         if self._stream is not None:
             self._guarded(self._stream.write, json.dumps(record) + "\n")
         for listener in self.listeners:

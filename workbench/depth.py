@@ -27,16 +27,30 @@ def deepest_node(root: Any) -> Position | None:
     pending: list[tuple[Any, int, Position | None]] = [(root, 0, None)]
     while pending:
         node, depth, where = pending.pop()
-        if not is_dataclass(node):
+        names = _field_names(type(node))
+        if names is None:
             continue
         where = getattr(node, "position", where)
         if depth > MAX_DEPTH:
             return where
-        for item in fields(node):
-            value = getattr(node, item.name)
-            children = value if isinstance(value, tuple) else (value,)
-            pending.extend((child, depth + 1, where) for child in children)
+        for name in names:
+            value = getattr(node, name)
+            if isinstance(value, tuple):
+                pending.extend((child, depth + 1, where) for child in value)
+            else:
+                pending.append((value, depth + 1, where))
     return None
+
+
+_FIELD_NAMES: dict[type, tuple[str, ...] | None] = {}
+
+
+def _field_names(cls: type) -> tuple[str, ...] | None:
+    """The field names of a dataclass, None for any other class; looked up once per class,
+    as every node of a large model passes here."""
+    if cls not in _FIELD_NAMES:
+        _FIELD_NAMES[cls] = tuple(f.name for f in fields(cls)) if is_dataclass(cls) else None
+    return _FIELD_NAMES[cls]
 
 
 def deepest(text: str, shown: str) -> Position:

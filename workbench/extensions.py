@@ -10,7 +10,7 @@ it. The extended language composes them when it builds its parser.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from importlib.metadata import entry_points
 from pathlib import Path
@@ -38,6 +38,9 @@ class LanguageExtension:
     templates: Path | None = None
     """Folder of generator templates: ``<target>/<node type>.jinja`` renders that node."""
     description: str = ""
+    symbols: Mapping[type, str] = field(default_factory=dict)
+    """Element types that declare a name, with the kind editors show (``{Requirement:
+    "requirement"}``): outline, navigation, rename and completion then know the names."""
 
 
 @cache
@@ -54,6 +57,13 @@ def extensions_of(language: str) -> tuple[LanguageExtension, ...]:
 def extension_of(node: Any) -> LanguageExtension | None:
     """The extension whose AST node ``node`` is, or None for a node of the base language."""
     return next((e for e in language_extensions() if type(node) in e.printers), None)
+
+
+def symbol_kind(node: Any) -> str | None:
+    """The kind of symbol an extension element declares, or None when it declares none."""
+    return next(
+        (e.symbols[type(node)] for e in language_extensions() if type(node) in e.symbols), None
+    )
 
 
 def template_name(target: str, node: Any) -> str:

@@ -15,10 +15,11 @@ from dataclasses import dataclass, field
 from functools import cache
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import Protocol
+from typing import Any, Protocol
 
 import jinja2
 
+from lightrocks.metamodel import ast
 from lightrocks.workbench.check import CheckContext
 from lightrocks.workbench.files import write_tree
 
@@ -44,6 +45,17 @@ class Generator(Protocol):
 
 class GenerationError(Exception):
     """A problem the user can fix (bad option, output folder not writable, …)."""
+
+
+def refuse_extensions(target: str, unit: Any) -> None:
+    """Stop at the first node a language extension added, for a target that has no mapping
+    for extension syntax: leaving it out would generate something the model does not say."""
+    for node in ast.walk(unit):
+        if ast.is_extension(node):
+            raise GenerationError(
+                f"{node.position}: the {target} target does not map '{type(node).__name__}', "
+                "which a language extension adds"
+            )
 
 
 def generator_names() -> list[str]:

@@ -20,6 +20,7 @@ from typing import Any, Protocol
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.depth import TOO_DEEP, deepest, deepest_node
+from lightrocks.workbench.extensions import extensions_of
 from lightrocks.workbench.languages import Language
 
 
@@ -79,7 +80,8 @@ def _parsed(language: Language, text: str, shown: str) -> Any:
 def _key(language: Language, text: str, shown: str) -> str:
     digest = hashlib.blake2b(digest_size=20)
     grammar = grammar_digest(language.parse.__module__)
-    for part in (FORMAT, _version(), grammar, language.name, shown):
+    extended = extensions_digest(language.name)
+    for part in (FORMAT, _version(), grammar, extended, language.name, shown):
         digest.update(part.encode("utf-8", "surrogatepass") + b"\x00")
     digest.update(text.encode("utf-8", "surrogatepass"))
     return digest.hexdigest()
@@ -95,6 +97,19 @@ def grammar_digest(module: str) -> str:
         for path in sorted(folder.glob("*")):
             if path.suffix in (".tx", ".py"):
                 digest.update(path.name.encode() + b"\x00" + path.read_bytes() + b"\x00")
+    return digest.hexdigest()
+
+
+@cache
+def extensions_digest(language: str) -> str:
+    """A digest of the syntax installed extensions add to a language: installing or removing
+    one changes what a text means."""
+    digest = hashlib.sha256()
+    for extension in extensions_of(language):
+        rules = "\x00".join(
+            (extension.name, extension.grammar.rules, repr(extension.grammar.hooks))
+        )
+        digest.update(rules.encode("utf-8") + b"\x00")
     return digest.hexdigest()
 
 

@@ -41,6 +41,7 @@ class MujocoPlant:
             raise ValueError(f"robot actuators of scene {scene!r} are not contiguous")
         self.q = self.data.qpos[qa : qa + NV]
         self.v = self.data.qvel[va : va + NV]
+        self._fingers = self.q[ARM_DOF:]
         self.q[:ARM_DOF] = READY_Q
         self.q[ARM_DOF:] = FINGER_TRAVEL
         mujoco.mj_forward(self.model, self.data)
@@ -48,7 +49,12 @@ class MujocoPlant:
         self._force = int(sensor("ft_force").adr[0])
         if int(sensor("ft_torque").adr[0]) != self._force + 3:
             raise ValueError("sensor ft_torque must follow ft_force in lwr.xml")
-        self._site = self.model.site(FT_SITE).id
+        site = self.model.site(FT_SITE).id
+        self._site_rotation = self.data.site_xmat[site].reshape(3, 3)
+        self._site_wrench = self.data.sensordata[self._force : self._force + 6].reshape(2, 3)
+        """Views into ``data``: read in place every tick, never copied."""
+        self._raw = np.zeros(6)
+        self._raw_rows = self._raw.reshape(2, 3)
         self._arm_ctrl = self.data.ctrl[self._ctrl : self._ctrl + ARM_DOF]
         self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
         self._scene = scene
@@ -61,16 +67,16 @@ class MujocoPlant:
         GRIPPER_BAND of the end of travel (see robot_model).
         """
         self._arm_ctrl[:] = tau
-        self._finger_ctrl[:] = finger_push(grip, self.q[ARM_DOF:].tolist(), 0.0)
+        self._finger_ctrl[:] = finger_push(grip, self._fingers.tolist(), 0.0)
         if self._scene_step is not None:
             self._scene_step(self.model, self.data)
         mujoco.mj_step(self.model, self.data)
 
     def wrist(self) -> np.ndarray:
-        """The force/torque sensors (site frame) rotated into world axes."""
-        rotation = self.data.site_xmat[self._site].reshape(3, 3)
-        site = self.data.sensordata[self._force : self._force + 6].reshape(2, 3)
-        return (site @ rotation.T).reshape(6)
+        """The force/torque sensors (site frame) rotated into world axes (the array is
+        reused: valid until the next step)."""
+        np.matmul(self._site_wrench, self._site_rotation.T, out=self._raw_rows)
+        return self._raw
 
     def sync(self) -> None:
         """``data`` is the simulation itself: always current."""

@@ -75,6 +75,9 @@ class PinocchioPlant:
         self._arm_data = self._arm.createData()
         self.q = np.concatenate((READY_Q, [FINGER_TRAVEL, FINGER_TRAVEL]))
         self.v = np.zeros(NV)
+        self._arm_q, self._arm_v = self.q[:ARM_DOF], self.v[:ARM_DOF]
+        self._arm_generalized = self._generalized[:ARM_DOF]
+        """Views made once: a view costs a NumPy call too."""
         self.sync()
         self._ft_id = self.robot.getFrameId(FT_SITE)
         hand = self.model.body(HAND_BODY).id
@@ -88,6 +91,9 @@ class PinocchioPlant:
         """Per static box, the world-axis box (x, y, z low, then high) around it that the hand
         origin must enter to touch it."""
         self._frames, self._points = self._contact_points()
+        self._hand = self.robot_data.oMf[self._frames[0]]
+        self._ft = self.robot_data.oMf[self._ft_id]
+        """Placements of the hand and the ft site: references into ``robot_data``."""
         self._contact = np.zeros(6)
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
         self._fixture = scene_hooks.fixture_twin(scene)
@@ -132,12 +138,12 @@ class PinocchioPlant:
         """One DT: contacts, arm dynamics, then the first-order fingers."""
         pin.framesForwardKinematics(self.robot, self.robot_data, self.q)
         generalized = np.multiply(self._neg_damping, self.v, out=self._generalized)
-        generalized[:ARM_DOF] += tau
+        self._arm_generalized += tau
         blocked = self._apply_contacts(generalized)
         if self._fixture is not None:
             self._apply_fixture(generalized, grip)
-        q, v = self.q[:ARM_DOF], self.v[:ARM_DOF]
-        v += DT * pin.aba(self._arm, self._arm_data, q, v, generalized[:ARM_DOF])
+        q, v = self._arm_q, self._arm_v
+        v += DT * pin.aba(self._arm, self._arm_data, q, v, self._arm_generalized)
         q += DT * v
         fingers = self.q[ARM_DOF:].tolist()
         speeds = finger_push(grip / FINGER_DAMPING, fingers, self._grasp)
@@ -169,7 +175,7 @@ class PinocchioPlant:
         data = self.robot_data
         self._contact[:] = 0.0
         blocked = [False, False]
-        x, y, z = data.oMf[self._frames[0]].translation.tolist()
+        x, y, z = self._hand.translation.tolist()
         near = [
             box
             for box, (x0, y0, z0, x1, y1, z1) in zip(self._boxes, self._reach, strict=True)
@@ -220,7 +226,7 @@ class PinocchioPlant:
 
     def wrist(self) -> np.ndarray:
         """Quasi-static reading: what link7 must exert to hold the load against contacts."""
-        lx, ly, lz = (self.robot_data.oMf[self._ft_id].rotation @ self._load_com).tolist()
+        lx, ly, lz = (self._ft.rotation @ self._load_com).tolist()
         wx, wy, wz = self._load
         fx, fy, fz, tx, ty, tz = self._contact.tolist()
         return np.array(

@@ -14,7 +14,7 @@ import xml.etree.ElementTree as ET
 from datetime import UTC, datetime
 from itertools import count
 
-from lightrocks.generators.sfc_iec61131.build import Block, Unit, Variable
+from lightrocks.generators.sfc_iec61131.build import Block, Transition, Unit, Variable
 from lightrocks.generators.sfc_iec61131.frames import FRAME_FIELDS, FUNCTIONS
 
 NAMESPACE = "http://www.plcopen.org/xml/tc6_0201"
@@ -168,11 +168,16 @@ def _pou(parent: ET.Element, block: Block, kind: str) -> None:
 
 
 def _network(sfc: ET.Element, block: Block) -> None:
-    """Steps in columns; ways out through a divergence, each transition ending in a jump."""
+    """Steps in columns; ways out through a divergence, each transition ending in a jump.
+    Orthogonal regions: a simultaneous divergence after the transition that starts them,
+    and a simultaneous convergence of their last steps before the transition that joins them
+    (drawn after every step, since it gathers steps of several columns)."""
     ids = count(1)
+    steps: dict[str, int] = {}
     for column, step in enumerate(block.steps):
         x = column * COLUMN
         step_id = next(ids)
+        steps[step.name] = step_id
         element = _add(sfc, "step", localId=step_id, name=step.name)
         if step.initial:
             element.set("initialStep", "true")
@@ -187,7 +192,7 @@ def _network(sfc: ET.Element, block: Block) -> None:
                 action = _add(actions, "action", localId=next(ids), qualifier=qualifier)
                 _position(action, 0, index * 20, "relPosition")
                 _add(action, "reference", name=name)
-        leaving = [t for t in block.transitions if t.source == step.name]
+        leaving = [t for t in block.transitions if t.source == step.name and not t.sources]
         source = step_id
         if len(leaving) > 1:
             divergence = _add(sfc, "selectionDivergence", localId=next(ids))
@@ -197,19 +202,49 @@ def _network(sfc: ET.Element, block: Block) -> None:
                 _add(divergence, "connectionPointOut", formalParameter="")
             source = int(divergence.get("localId"))
         for row, transition in enumerate(leaving):
-            y = 2 * ROW + 2 * ROW * row
-            transition_id = next(ids)
-            element = _add(sfc, "transition", localId=transition_id)
-            if transition.priority is not None:
-                element.set("priority", str(transition.priority))
-            _position(element, x, y)
-            _add(_add(element, "connectionPointIn"), "connection", refLocalId=source)
-            _add(element, "connectionPointOut")
-            condition = _add(_add(element, "condition"), "inline", name=transition.name)
-            _text(condition, "ST", [transition.condition])
-            jump = _add(sfc, "jumpStep", localId=next(ids), targetName=transition.target)
-            _position(jump, x, y + ROW)
-            _add(_add(jump, "connectionPointIn"), "connection", refLocalId=transition_id)
+            _transition(sfc, ids, transition, [source], x, 2 * ROW + 2 * ROW * row)
+    column = len(block.steps)
+    for transition in block.transitions:
+        if not transition.sources:
+            continue
+        x = column * COLUMN
+        column += 1
+        convergence = _add(sfc, "simultaneousConvergence", localId=next(ids))
+        _position(convergence, x, ROW)
+        for name in transition.sources:
+            _add(_add(convergence, "connectionPointIn"), "connection", refLocalId=steps[name])
+        _add(convergence, "connectionPointOut")
+        _transition(sfc, ids, transition, [int(convergence.get("localId"))], x, 2 * ROW)
+
+
+def _transition(
+    sfc: ET.Element, ids, transition: Transition, sources: list[int], x: int, y: int
+) -> None:
+    """A transition under ``sources``, then a jump to its target, or a simultaneous
+    divergence with a jump to each of its targets."""
+    transition_id = next(ids)
+    element = _add(sfc, "transition", localId=transition_id)
+    if transition.priority is not None:
+        element.set("priority", str(transition.priority))
+    _position(element, x, y)
+    connected = _add(element, "connectionPointIn")
+    for source in sources:
+        _add(connected, "connection", refLocalId=source)
+    _add(element, "connectionPointOut")
+    condition = _add(_add(element, "condition"), "inline", name=transition.name)
+    _text(condition, "ST", [transition.condition])
+    origin = transition_id
+    if transition.targets:
+        divergence = _add(sfc, "simultaneousDivergence", localId=next(ids))
+        _position(divergence, x, y + ROW)
+        _add(_add(divergence, "connectionPointIn"), "connection", refLocalId=transition_id)
+        for _ in transition.targets:
+            _add(divergence, "connectionPointOut", formalParameter="")
+        origin = int(divergence.get("localId"))
+    for offset, target in enumerate(transition.targets or [transition.target]):
+        jump = _add(sfc, "jumpStep", localId=next(ids), targetName=target)
+        _position(jump, x + offset * COLUMN // 2, y + 2 * ROW if transition.targets else y + ROW)
+        _add(_add(jump, "connectionPointIn"), "connection", refLocalId=origin)
 
 
 def _configuration(parent: ET.Element, unit: Unit, interval: str) -> None:

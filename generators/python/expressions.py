@@ -9,6 +9,7 @@ and comparisons never chain.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from lightrocks.generators.python.names import attribute, identifier
@@ -48,6 +49,8 @@ class Scope:
     typing: Typing | None
     region: Region | None
     offset: int = 0
+    extension: Callable[[ast.ExtensionNode, Scope], str] | None = None
+    """Renders a node of a language extension through that extension's template."""
 
     def __post_init__(self) -> None:
         self.env: dict[str, Type] = (
@@ -112,6 +115,8 @@ def _compile(node: ast.Expression, scope: Scope) -> tuple[str, int]:
             left = _wrap(_compile(node.left, scope), left_min)
             right = _wrap(_compile(node.right, scope), level + 1)
             return f"{left} {operator} {right}", level
+        case ast.ExtensionNode() if scope.extension is not None:
+            return f"({scope.extension(node, scope)})", ATOM
     raise CompileError(f"{node.position}: cannot compile {type(node).__name__}")
 
 
@@ -159,7 +164,9 @@ def target(node: ast.Expression, scope: Scope) -> str:
 def statements(body: tuple[ast.Statement, ...], scope: Scope) -> list[str]:
     lines = []
     for statement in body:
-        if isinstance(statement, ast.Assignment):
+        if isinstance(statement, ast.ExtensionNode) and scope.extension is not None:
+            lines += scope.extension(statement, scope).splitlines()
+        elif isinstance(statement, ast.Assignment):
             value = expression(statement.value, scope)
             lines.append(f"{target(statement.target, scope)} = {value}")
         else:

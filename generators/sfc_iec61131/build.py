@@ -12,7 +12,8 @@ is an exit step that raises ``done`` and the outcome's output until ``execute`` 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Iterator
+from dataclasses import dataclass, field, replace
 
 from lightrocks.generators.selection import is_action, reachable
 from lightrocks.generators.sfc_iec61131.expressions import Scope, literal, time_literal
@@ -32,7 +33,7 @@ from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, Component, R
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup
-from lightrocks.workbench.generators import GenerationError
+from lightrocks.workbench.generators import GenerationError, refuse_extensions
 
 DEFAULT_TIMEOUT = 30.0
 # The handshake of a device block, written by the integrator's driver (docs/generators.md).
@@ -66,6 +67,8 @@ class Transition:
     target: str
     condition: str
     priority: int | None = None
+    sources: list[str] = field(default_factory=list)  # a simultaneous convergence
+    targets: list[str] = field(default_factory=list)  # a simultaneous divergence
 
 
 @dataclass
@@ -98,6 +101,7 @@ class Block:
     states: dict[str, tuple[str, str]] = field(default_factory=dict)
     instances: dict[str, str] = field(default_factory=dict)  # instance -> hosting state path
     events: dict[str, str] = field(default_factory=dict)  # LightRocks event -> input
+    regions: list[str] = field(default_factory=list)  # state paths of orthogonal regions
 
 
 @dataclass
@@ -315,26 +319,55 @@ class Node:
 
 @dataclass
 class Branch:
-    """One way out of a step: its condition, then the statements, then where it goes."""
+    """One way out of a step: its condition, then the statements, then where it goes.
+
+    A branch without target stays in its step (an internal transition); a branch with
+    ``following`` runs its statements in a step of its own and goes on by those branches
+    (a choice, whose guards read the effect of the statements)."""
 
     condition: list[str]
     statements: list[str]
-    target: str
+    target: str | None
     postcondition: str = ""
     violated: list[Branch] = field(default_factory=list)  # where a broken postcondition goes
+    following: list[Branch] | None = None
 
 
-def _refuse_regions(component: Component) -> None:
-    """Orthogonal regions would need simultaneous divergence and convergence, and a way to
-    end every branch when one of them leaves: generation ends at the first region instead
-    of producing a network that means something else."""
-    for region in component.region.regions():
-        if region.orthogonal:
-            first = next(iter(region.states.values()))
-            raise GenerationError(
-                f"{first.state.position}: {component.qualified_name}: the SFC target does not "
-                f"map orthogonal regions yet (region '{first.name}' of '{region.name}')"
-            )
+def _lineage(component: Component) -> Iterator[Component]:
+    """A component and the bases it extends."""
+    current: Component | None = component
+    while current is not None:
+        yield current
+        current = current.base
+
+
+@dataclass
+class Parallel:
+    """The steps of an orthogonal state: every entry goes to ``fork``, whose simultaneous
+    divergence starts each region and ``watch``; a region rests in ``ends[i]`` once final,
+    or once ``abort`` asks every region to end; the simultaneous convergence of the ends and
+    of ``watched`` leads to ``left``, which goes on by ``way``: 0 the join, 1 an error of a
+    region, from 2 on the transitions the watch takes."""
+
+    fork: str
+    watch: str
+    watched: str
+    left: str
+    ends: list[str]
+    abort: str
+    way: str
+    final: str  # which final state of the first region it rests in
+
+
+@dataclass
+class Timer:
+    """A time event ``after(d)`` of one state: an on-delay timer started on entry and a flag
+    raised once its deadline has passed, so that it fires at most once per entry."""
+
+    transition: ast.Transition | ast.InternalTransition
+    instance: str
+    passed: str
+    duration: str
 
 
 class ComponentBuilder:
@@ -345,13 +378,17 @@ class ComponentBuilder:
     and the exit, transition and entry statements of a transition run in a step of their own
     between source and target. An action's outcome is taken in a settle step that stops the
     command and runs the action's exit statements before any guard reads their effect.
+    Internal transitions run in their step's N action; time events are TON timers; history
+    is a variable per composite; an orthogonal state is one simultaneous divergence and one
+    simultaneous convergence (docs/generators.md).
     """
 
     def __init__(self, unit: UnitBuilder, component: Component) -> None:
         self.unit = unit
         self.component = component
         self.region = component.region
-        _refuse_regions(component)
+        for layer in _lineage(component):
+            refuse_extensions("SFC", layer.unit)
         layer = component.layer or "statechart"
         self.block = Block(
             unit.globals.claim(component.name), f"<<{layer}>> {component.qualified_name}"
@@ -362,6 +399,9 @@ class ComponentBuilder:
         self.leaves: dict[int, str] = {}  # id(node) -> step of a resting leaf
         self.exits: dict[str, str] = {}
         self.stops: dict[int, list[str]] = {}  # id(node) -> lines that stop its command
+        self.memories: dict[int, str] = {}  # id(composite) -> its history variable
+        self.timers: dict[int | None, list[Timer]] = {}  # id(node), None: the statechart
+        self.parallels: dict[int, Parallel] = {}  # id(orthogonal state) -> its steps
 
     def _scope(self, region: Region, names: dict[str, str]) -> Scope:
         env = self.unit.typing.environment(region)
@@ -400,44 +440,91 @@ class ComponentBuilder:
         self.idle = self._step("Idle", initial=True)
         self._body(self.idle.name, "P1", [f"{v.name} := FALSE;" for v in block.outputs])
         self.nodes = self._nodes(region, None)
+        self._declare_memories()
+        self._declare_timers()
         for node in self._all(self.nodes):
             if node.children is None and not node.info.state.is_final:
                 self.leaves[id(node)] = self._step("_".join(node.path)).name
                 block.states[self.leaves[id(node)]] = ("/".join(node.path), "")
+        orthogonal = [n for n in [None, *self._all(self.nodes)] if self._orthogonal(n)]
+        for node in orthogonal:
+            self._declare_parallel(node)
         self._start()
         for node in self._all(self.nodes):
             if id(node) in self.leaves:
                 self._leaf(node)
+        for node in orthogonal:
+            self._parallel(node)
         for name, variable in self.events.items():
             block.inputs.append(Variable(variable, "BOOL", comment=f"event {name}: one cycle"))
         block.events = dict(self.events)
         return block
 
     def _refuse_unmapped(self) -> None:
-        """Constructs the SFC mapping does not cover yet end generation with their place,
+        """Constructs the SFC mapping does not cover end generation with their place,
         instead of a network that would mean something else."""
         for region in self.region.regions():
-            found = [
-                (p.position, f"{p.kind} pseudostate '{p.name}'")
-                for p in region.pseudostates.values()
-            ]
-            found += [(t.position, "internal transition") for t in region.internal]
-            found += [
-                (t.position, "time event after(…)")
-                for t in region.transitions
-                if t.delay is not None
-            ]
-            found += [
-                (t.position, "entry through history")
-                for t in region.transitions
-                if t.target_history
-            ]
-            if found:
-                position, what = min(found, key=lambda item: (item[0].line, item[0].column))
-                raise GenerationError(
-                    f"{position}: {self.component.qualified_name}: the SFC target does not map "
-                    f"a {what} yet"
+            for info in region.states.values():
+                inner = info.region
+                if region.orthogonal and inner is not None:
+                    for nested in inner.regions()[1:]:
+                        if nested.orthogonal:
+                            self._refuse(nested.position, "orthogonal regions inside a region")
+            deep = [p for p in region.pseudostates.values() if p.kind == "deep history"]
+            if deep and any(r.orthogonal for r in region.regions()[1:]):
+                self._refuse(deep[0].position, "deep history over orthogonal regions")
+
+    def _refuse(self, position: ast.Position, what: str) -> None:
+        raise GenerationError(
+            f"{position}: {self.component.qualified_name}: the SFC target does not map {what}"
+        )
+
+    def _declare_memories(self) -> None:
+        """A DINT per composite that history re-enters (deep history: every composite below
+        it too): the number of its child active when it was last left, 0 for none or final."""
+        remembered: list[Node] = []
+        for node in self._all(self.nodes):
+            if node.children is None:
+                continue
+            kinds = {p.kind for p in node.info.region.pseudostates.values()}
+            if not kinds & {"history", "deep history"}:
+                continue
+            below = self._all(node.nested) if "deep history" in kinds else []
+            remembered += [node, *(n for n in below if n.children is not None)]
+        for node in remembered:
+            if id(node) not in self.memories:
+                name = self.names.claim(f"{'_'.join(node.path)}_last")
+                self.memories[id(node)] = name
+                comment = f"history of {'/'.join(node.path)}: its child last active, 0 none"
+                self.block.locals.append(Variable(name, "DINT", "0", comment))
+
+    def _declare_timers(self) -> None:
+        """A timer per time event: those of a state's own body and those leaving it."""
+        owners: list[tuple[Node | None, list]] = [(None, list(self.region.internal))]
+        for node in self._all(self.nodes):
+            own = list(node.info.region.internal) if node.info.region else []
+            leaving = [t for t in node.region.transitions if t.source == node.name]
+            owners.append((node, own + leaving))
+        for node, transitions in owners:
+            for transition in transitions:
+                if transition.delay is None:
+                    continue
+                where = "_".join(node.path) if node else self.component.name
+                instance = self.names.claim(f"{where}_after")
+                passed = self.names.claim(f"{instance}_passed")
+                comment = f"after(…) at {transition.position.line}:{transition.position.column}"
+                self.block.locals += [
+                    Variable(instance, "TON", comment=comment),
+                    Variable(passed, "BOOL", comment="its deadline has passed since the entry"),
+                ]
+                duration = literal(transition.delay)
+                duration = (
+                    time_literal(float(duration))
+                    if duration is not None
+                    else f"REAL_TO_TIME({self.scope.compile(transition.delay)})"
                 )
+                timer = Timer(transition, instance, passed, duration)
+                self.timers.setdefault(id(node) if node else None, []).append(timer)
 
     def _nodes(self, region: Region, parent: Node | None) -> list[Node]:
         nodes = []
@@ -475,13 +562,130 @@ class ComponentBuilder:
         name = self.names.claim(f"{source}_to_{target}")
         self.block.transitions.append(Transition(name, source, target, condition or "TRUE"))
 
-    def _branches(self, source: str, branches: list[Branch]) -> None:
+    # -- orthogonal regions ------------------------------------------------------------------
+
+    def _declare_parallel(self, node: Node | None) -> None:
+        """The steps and variables of an orthogonal state (None: the statechart), before
+        anything leads there."""
+        where = "_".join(node.path) if node else self.component.name
+        variables = [
+            Variable(self.names.claim(f"{where}_abort"), "BOOL", comment="every region ends"),
+            Variable(self.names.claim(f"{where}_way"), "DINT", comment="how it is left"),
+            Variable(self.names.claim(f"{where}_final"), "DINT", comment="first region's end"),
+        ]
+        self.block.locals += variables
+        abort, way, final = (v.name for v in variables)
+        fork = self._step(f"{where}_fork").name
+        ends = [self._step(f"{'_'.join(r.path)}_end").name for r in self._nested(node)]
+        watch = self._step(f"{where}_watch").name
+        watched = self._step(f"{where}_watched").name
+        left = self._step(f"{where}_left").name
+        self.parallels[id(node)] = Parallel(fork, watch, watched, left, ends, abort, way, final)
+        self.block.regions += ["/".join(r.path) for r in self._nested(node)]
+
+    def _rest(self, region: Node, outcome: str, statements: list[str], condition) -> Branch:
+        """A region ends: resting in a final state, or with ``error``, which ends them all."""
+        parallel = self.parallels[id(region.parent)]
+        end = self._end(region)
+        finals = [n.name for n in region.nested if n.info.state.is_final]
+        if outcome in finals:
+            first = region is self._nested(region.parent)[0]
+            chosen = [f"{parallel.final} := {finals.index(outcome) + 1};"] if first else []
+            return Branch(condition, statements + chosen, end)
+        return Branch(condition, statements + self._abort(parallel, 1), end)
+
+    def _end(self, region: Node) -> str:
+        """The step in which ``region`` rests until every region has ended."""
+        return self.parallels[id(region.parent)].ends[self._nested(region.parent).index(region)]
+
+    @staticmethod
+    def _abort(parallel: Parallel, way: int) -> list[str]:
+        """Ask every region to end; the first way out asked for is taken."""
+        return [
+            f"IF NOT {parallel.abort} THEN",
+            f"  {parallel.way} := {way};",
+            f"  {parallel.abort} := TRUE;",
+            "END_IF;",
+        ]
+
+    def _parallel(self, node: Node | None) -> None:
+        """Fork, watch, join: the network of an orthogonal state (None: the statechart,
+        whose entry statements run before its fork)."""
+        parallel = self.parallels[id(node)]
+        lines = [f"{parallel.abort} := FALSE;", f"{parallel.way} := 0;", f"{parallel.final} := 0;"]
+        lines += self._entry(node) if node else []
+        targets = []
+        regions = self._nested(node)
+        for index, region in enumerate(regions):
+            entries, leaf = self._enter(region)
+            lines += entries
+            if leaf.info.state.is_final:
+                branch = self._rest(region, leaf.name, [], [])
+                lines += branch.statements
+                targets.append(parallel.ends[index])
+            else:
+                targets.append(self.leaves[id(leaf)])
+        targets.append(parallel.watch)
+        self._body(parallel.fork, "P1", lines)
+        name = self.names.claim(f"{parallel.fork}_to_regions")
+        self.block.transitions.append(
+            Transition(name, parallel.fork, targets[0], "TRUE", targets=targets)
+        )
+        # the watch: what leaves the orthogonal state from outside its regions
+        ended = " AND ".join(f"{end}.X" for end in parallel.ends)
+        outside = self._invariant_branches(node) + self._events(node, [])
+        before = len(self.block.transitions)
+        staying = self._branches(
+            parallel.watch,
+            [
+                Branch([f"{parallel.abort} OR ({ended})"], [], parallel.watched),
+                *(
+                    replace(b, statements=self._abort(parallel, n), target=parallel.watched,
+                            postcondition="", violated=[], following=None)
+                    if b.target is not None else b
+                    for n, b in enumerate(outside, 2)
+                ),
+            ],
+        )  # fmt: skip
+        self._body(parallel.watch, "N", staying + self._ticks(node))
+        # declared first, the watch reads the regions' step flags before any region moves:
+        # MatIEC clears a step's flag as soon as one of its transitions fires
+        added = self.block.transitions[before:]
+        first = [t for t in added if t.source == parallel.watch]
+        rest = [t for t in self.block.transitions if t not in first]
+        self.block.transitions[:] = first + rest
+        name = self.names.claim(f"{parallel.left}_join")
+        sources = [*parallel.ends, parallel.watched]
+        self.block.transitions.append(
+            Transition(name, sources[0], parallel.left, "TRUE", sources=sources)
+        )
+        # leaving: the regions' own exits (last region first), then the way taken
+        exits = [line for r in reversed(regions) for line in self._exits([r])]
+        first = regions[0]
+        finals = [n.name for n in first.nested if n.info.state.is_final]
+        ways = [
+            branch
+            for number, outcome in enumerate(finals, 1)
+            for branch in self._complete(
+                node, outcome, exits, [f"{parallel.way} = 0", f"{parallel.final} = {number}"]
+            )
+        ]
+        ways += self._complete(node, "error", exits, [f"{parallel.way} = 1"])
+        for n, b in enumerate(outside, 2):
+            if b.target is not None:
+                ways.append(replace(b, condition=[f"{parallel.way} = {n}"],
+                                    statements=exits + b.statements))  # fmt: skip
+        self._branches(parallel.left, ways)
+
+    def _branches(self, source: str, branches: list[Branch]) -> list[str]:
         """Exclusive transitions from ``source``: each branch requires no earlier one to hold.
 
         Statements run in a step of their own between source and target, so that they
-        finish before the target's entry and so that a postcondition reads their effect."""
+        finish before the target's entry and so that a postcondition reads their effect.
+        Branches that stay in ``source`` come back as ST lines for its N action."""
         taken: list[str] = []
         covered: list[set[str]] = []
+        staying: list[str] = []
         for branch in branches:
             needs = {c for c in branch.condition if c and c != "TRUE"}
             if any(earlier <= needs for earlier in covered):
@@ -490,6 +694,25 @@ class ComponentBuilder:
             condition = _conjunction(branch.condition)
             whole = _conjunction([condition, *(_negate(t) for t in taken)])
             taken.append(condition)
+            if branch.target is None:
+                if branch.statements:
+                    indented = [f"  {line}" for line in branch.statements]
+                    staying += [f"IF {whole} THEN", *indented, "END_IF;"]
+                continue
+            if branch.following is not None:
+                between = self._step(f"{source}_to_{branch.target}_do").name
+                self._body(between, "P1", branch.statements)
+                self._go(source, between, whole)
+                following = branch.following
+                if branch.postcondition:
+                    post = branch.postcondition
+                    following = [
+                        *(replace(f, condition=[post, *f.condition]) for f in following),
+                        *(replace(v, condition=[_negate(post), *v.condition])
+                          for v in branch.violated),
+                    ]  # fmt: skip
+                self._branches(between, following)
+                continue
             if not (branch.statements or branch.postcondition or branch.target == source):
                 self._go(source, branch.target, whole)
                 continue
@@ -509,6 +732,7 @@ class ComponentBuilder:
                 self._branches(between, violated)
             else:
                 self._go(between, branch.target, "")
+        return staying
 
     def _exit(self, outcome: str) -> str:
         """The step that raises ``done`` and ``outcome`` until ``execute`` falls."""
@@ -542,17 +766,76 @@ class ComponentBuilder:
             return []
         return self._statements(s for a in region.actions if a.kind == kind for s in a.statements)
 
+    def _entry(self, node: Node | None) -> list[str]:
+        """The entry statements of one state (None: the statechart), then the start of its
+        time events."""
+        region = node.info.region if node else self.region
+        lines = self._region_statements(region, "entry")
+        for timer in self.timers.get(id(node) if node else None, []):
+            lines += [f"{timer.instance}(IN := FALSE, PT := {timer.duration});",
+                      f"{timer.passed} := FALSE;"]  # fmt: skip
+        return lines
+
     def _enter(self, node: Node) -> tuple[list[str], Node]:
-        """Entry statements from ``node`` down its initial states, and the leaf reached."""
-        lines = self._region_statements(node.info.region, "entry")
-        while node.children is not None:
+        """Entry statements from ``node`` down its initial states, and the leaf reached; an
+        orthogonal state is a leaf here (its fork step enters it)."""
+        lines = [] if self._orthogonal(node) else self._entry(node)
+        while node.children is not None and not self._orthogonal(node):
             initial = next((n for n in node.nested if n.info.state.is_initial), node.nested[0])
             node = initial
-            lines += self._region_statements(node.info.region, "entry")
+            lines += [] if self._orthogonal(node) else self._entry(node)
         return lines, node
 
+    def _orthogonal(self, node: Node | None) -> bool:
+        """``node`` (None: the statechart) holds orthogonal regions."""
+        region = node.info.region if node else self.region
+        return region is not None and region.orthogonal
+
+    def _in_region(self, node: Node) -> bool:
+        """``node`` is a region of an orthogonal state or statechart."""
+        return self._orthogonal(node.parent)
+
+    def _nested(self, node: Node | None) -> list[Node]:
+        return node.nested if node else self.nodes
+
+    def _owners(self, node: Node | None) -> list[Node | None]:
+        """The states whose transitions a leaf (or the watch of an orthogonal state) takes:
+        up to its region, or up to the statechart itself (None)."""
+        if node is None:
+            return [None]
+        owners: list[Node | None] = []
+        for owner in node.chain():
+            if self._in_region(owner):
+                return owners
+            owners.append(owner)
+        return [*owners, None]
+
     def _exits(self, chain: list[Node]) -> list[str]:
-        return [line for n in chain for line in self._region_statements(n.info.region, "exit")]
+        """Exit statements of ``chain`` (innermost first); each state left is remembered
+        by the history of its parent."""
+        lines = []
+        for node in chain:
+            lines += self._region_statements(node.info.region, "exit") + self._remember(node)
+        return lines
+
+    def _remember(self, node: Node) -> list[str]:
+        """``node`` is left: the history of its parent records it (a final state as 0)."""
+        parent = node.parent
+        if parent is None or id(parent) not in self.memories:
+            return []
+        number = 0 if node.info.state.is_final else parent.nested.index(node) + 1
+        return [f"{self.memories[id(parent)]} := {number};"]
+
+    def _ticks(self, node: Node) -> list[str]:
+        """N-action lines of a leaf that run the timers of its state and the states around
+        it: the flag reads the timer's output of the scan before, so the scan in which the
+        deadline shows is the one scan in which the time event fires."""
+        lines = []
+        for owner in self._owners(node):
+            for timer in self.timers.get(id(owner) if owner else None, []):
+                lines += [f"{timer.passed} := {timer.passed} OR {timer.instance}.Q;",
+                          f"{timer.instance}(IN := TRUE);"]  # fmt: skip
+        return lines
 
     def _invariants(self, node: Node) -> list[str]:
         """The invariants of one state (not of its enclosing states)."""
@@ -567,7 +850,10 @@ class ComponentBuilder:
         """Branches that enter ``node``: a resting leaf, or a final state completing its owner."""
         entries, leaf = self._enter(node)
         if leaf.info.state.is_final:
+            entries += self._remember(leaf)
             return self._complete(leaf.parent, leaf.name, statements + entries, condition)
+        if self._orthogonal(leaf):
+            return [Branch(condition, statements + entries, self.parallels[id(leaf)].fork)]
         return [Branch(condition, statements + entries, self.leaves[id(leaf)])]
 
     def _complete(
@@ -577,6 +863,8 @@ class ComponentBuilder:
         if owner is None:
             exits = self._region_statements(self.region, "exit")
             return [Branch(condition, statements + exits, self._exit(outcome))]
+        if self._in_region(owner):
+            return [self._rest(owner, outcome, statements, condition)]
         statements = statements + self._exits([owner])
         return self._react(owner, outcome, statements, condition)
 
@@ -609,24 +897,78 @@ class ComponentBuilder:
         """Take ``transition`` of the region of ``owner``: action, postcondition, target."""
         lines = statements + self._statements(transition.action or ())
         siblings = owner.nested if owner else self.nodes
+        region = owner.info.region if owner else self.region
         target = next((n for n in siblings if n.name == transition.target), None)
-        if target is None:  # an outcome of the enclosing state
+        post = self._guard(transition.postcondition)
+        choice = region.pseudostates.get(transition.target)
+        if choice is not None and choice.kind == "choice":
+            branches = self._choose(owner, choice, lines, condition, bool(post))
+        elif target is None:  # an outcome of the enclosing state
             branches = self._complete(owner, transition.target, lines, condition)
+        elif transition.target_history:
+            history = target.info.region.pseudostates[transition.target_history]
+            deep = history.kind == "deep history"
+            branches = self._history(target, deep, lines, condition)
         else:
             branches = self._to(target, lines, condition)
-        post = self._guard(transition.postcondition)
         if post:
             violated = self._complete(owner, "error", [], [])
             for branch in branches:
                 branch.postcondition, branch.violated = post, violated
         return branches
 
+    def _choose(
+        self,
+        owner: Node | None,
+        choice: ast.Pseudostate,
+        statements: list[str],
+        condition: list[str],
+        checked: bool,
+    ) -> list[Branch]:
+        """Leave ``choice`` at once by its first branch whose guard holds, else the state
+        that holds it ends with ``error``. Statements before it (or a postcondition to check,
+        ``checked``) run in a step of their own, so that its guards read their effect."""
+        region = owner.info.region if owner else self.region
+        branches: list[Branch] = []
+        guards: list[str] = []
+        for transition in region.transitions:
+            if transition.source != choice.name:
+                continue
+            guard = self._guard(transition.guard)
+            branches += self._fire(owner, transition, [], [guard])
+            if not guard:
+                break
+            guards.append(guard)
+        else:
+            branches += self._complete(owner, "error", [], [_negate(g) for g in guards])
+        if statements or checked:
+            return [Branch(condition, statements, choice.name, following=branches)]
+        return [replace(b, condition=[*condition, *b.condition]) for b in branches]
+
+    def _history(
+        self, node: Node, deep: bool, statements: list[str], condition: list[str]
+    ) -> list[Branch]:
+        """Enter ``node`` through its history: the child it remembers (deep history: that
+        child through its own history too), else as usual."""
+        memory = self.memories[id(node)]
+        lines = statements + self._entry(node)
+        branches: list[Branch] = []
+        for number, child in enumerate(node.nested, 1):
+            if child.info.state.is_final:
+                continue
+            remembered = [*condition, f"{memory} = {number}"]
+            if deep and id(child) in self.memories:
+                branches += self._history(child, True, lines, remembered)
+            else:
+                branches += self._to(child, lines, remembered)
+        return branches + self._to(node, statements, condition)
+
     # -- the start ----------------------------------------------------------------------------
 
     def _start(self) -> None:
         """Idle waits for ``execute``; then the first start condition whose transition is
         enabled, or the initial state; ``error`` when none holds."""
-        entry = self._region_statements(self.region, "entry")
+        entry = self._entry(None)
         starts = self.region.start_conditions
         branches: list[Branch] = []
         if starts:
@@ -639,6 +981,8 @@ class ComponentBuilder:
                             None, transition, entry, [self.execute, holds, guard]
                         )
             branches += [Branch([self.execute], [], self._exit("error"))]
+        elif self.region.orthogonal:
+            branches = [Branch([self.execute], entry, self.parallels[id(None)].fork)]
         else:
             initial = next((n for n in self.nodes if n.info.state.is_initial), None)
             if initial is None:
@@ -653,38 +997,103 @@ class ComponentBuilder:
         """The ways out of a resting leaf: a broken invariant, the end of its command or
         child, external events."""
         step = self.leaves[id(node)]
-        branches: list[Branch] = []
-        chain = node.chain()
-        for depth, owner in enumerate(chain):
-            for invariant in self._invariants(owner):
-                exits = self._exits(chain[: depth + 1])
-                branches += self._react(owner, "error", exits, [_negate(invariant)])
+        branches = self._invariant_branches(node)
         imported = node.info.imported
         if imported is not None and is_action(imported):
             branches += self._inline_action(step, node)
         elif imported is not None:
             branches += self._instance(step, node)
-        branches += self._events(node, self.stops.get(id(node), []))
-        self._branches(step, branches)
+        stop = self.stops.get(id(node), [])
+        branches += self._events(node, stop)
+        owners = self._owners(node)
+        if owners[-1] is not None:  # in a region: ending every region comes first
+            region = owners[-1].parent
+            parallel = self.parallels[id(region.parent)]
+            end = self._end(region)
+            branches.insert(0, Branch([parallel.abort], stop + self._exits(owners), end))
+        staying = self._branches(step, branches)
+        self._body(step, "N", staying + self._ticks(node))
+
+    def _invariant_branches(self, node: Node) -> list[Branch]:
+        """A broken invariant of ``node`` or of a state around it ends that state."""
+        branches: list[Branch] = []
+        owners = [o for o in self._owners(node) if o is not None]
+        for depth, owner in enumerate(owners):
+            for invariant in self._invariants(owner):
+                exits = self._exits(owners[: depth + 1])
+                branches += self._react(owner, "error", exits, [_negate(invariant)])
+        return branches
 
     def _events(self, node: Node, stop: list[str]) -> list[Branch]:
-        """Transitions on external events: the innermost state first, declaration order."""
+        """Transitions on external events and time events: the innermost state first, its
+        internal transitions before those leaving it, declaration order. From an orthogonal
+        state, an event fires only when no state inside it takes the event."""
         branches = []
-        for owner in node.chain():
+        imported = node is None or node.info.imported is not None or self._orthogonal(node)
+        for owner in self._owners(node):
+            region = owner.info.region if owner else self.region
+            for transition in region.internal if region else ():
+                if imported and transition.delay is None:
+                    raise GenerationError(
+                        f"{transition.position}: {self.component.qualified_name}: the SFC "
+                        "target does not map an internal transition over a running child "
+                        "or over orthogonal regions"
+                    )
+                guard = self._guard(transition.guard)
+                statements = self._statements(transition.action or ())
+                stimulus = self._stimulus(owner, transition)
+                branches.append(Branch([*stimulus, guard], statements, None))
+            if owner is None:
+                break
             outcomes = {*(owner.info.outcomes or ()), *BUILTIN_OUTCOMES}  # never events
             for transition in owner.region.transitions:
                 if transition.source != owner.name or not transition.stimulus:
                     continue
                 if transition.stimulus in outcomes:
                     continue
-                event = self.events.get(transition.stimulus)
-                if event is None:
-                    event = self.events[transition.stimulus] = self.names.claim(transition.stimulus)
                 guard = self._guard(transition.guard)
                 chain = node.chain()[: node.chain().index(owner) + 1]
                 exits = stop + self._exits(chain)
-                branches += self._fire(owner.parent, transition, exits, [event, guard])
+                condition = [*self._stimulus(owner, transition), guard]
+                if self._orthogonal(node) and transition.delay is None:
+                    condition += self._untaken(node, transition.stimulus)
+                branches += self._fire(owner.parent, transition, exits, condition)
         return branches
+
+    def _untaken(self, node: Node, event: str) -> list[str]:
+        """The condition that no resting leaf inside ``node`` takes ``event``."""
+        takers = []
+        for leaf in self._all(node.nested):
+            if id(leaf) not in self.leaves:
+                continue
+            guards = []
+            for owner in self._owners(leaf):
+                if owner is None:
+                    break
+                region = owner.info.region
+                own = [t for t in (region.internal if region else ()) if t.stimulus == event]
+                own += [
+                    t
+                    for t in owner.region.transitions
+                    if t.source == owner.name and t.stimulus == event
+                ]
+                guards += [self._guard(t.guard) or "TRUE" for t in own]
+            if guards:
+                enabled = " OR ".join(_group(g) for g in guards)
+                takers.append(f"{self.leaves[id(leaf)]}.X AND {_group(enabled)}")
+        return [_negate(" OR ".join(f"({t})" for t in takers))] if takers else []
+
+    def _stimulus(self, owner: Node | None, transition) -> list[str]:
+        """The condition of a transition's event: its event input, or the scan in which
+        its time event falls due."""
+        if transition.delay is not None:
+            timers = self.timers[id(owner) if owner else None]
+            timer = next(t for t in timers if t.transition is transition)
+            return [f"{timer.instance}.Q", f"NOT {timer.passed}"]
+        event = self.events.get(transition.stimulus)
+        if event is None:
+            event = self.events[transition.stimulus] = self.names.claim(transition.stimulus)
+        return [event]
 
     # -- children: device commands and function-block instances -------------------------------
 
@@ -708,7 +1117,7 @@ class ComponentBuilder:
         branches = []
         for outcome in ("error", *info.imported.region.outcomes):
             flag = f"{instance}.{child.outcomes[outcome]}"
-            branches += self._react(node, outcome, [], [flag])
+            branches += self._react(node, outcome, self._remember(node), [flag])
         return branches
 
     def _inline_action(self, step: str, node: Node) -> list[Branch]:
@@ -758,7 +1167,7 @@ class ComponentBuilder:
             self.block.states[settle] = ("/".join(node.path), outcome)
             real = outcome not in ("error", "timeout")
             self._body(settle, "P1", stop + (store if real else []) + exits)
-            self._branches(settle, self._react(node, outcome, [], []))
+            self._branches(settle, self._react(node, outcome, self._remember(node), []))
             branches.append(Branch(condition, [], settle))
         return branches
 

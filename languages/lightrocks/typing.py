@@ -172,7 +172,9 @@ class Typing:
     # -- statements -----------------------------------------------------------------------
 
     def statement(self, statement: ast.Statement, env: dict[str, Type]) -> None:
-        if isinstance(statement, ast.Assignment):
+        if isinstance(statement, ast.ExtensionNode):
+            statement.infer(lambda part: self.infer(part, env))
+        elif isinstance(statement, ast.Assignment):
             target = self.assignable(statement.target, env)
             self.expect(statement.value, target, env, "assigned value")
         else:
@@ -180,6 +182,9 @@ class Typing:
 
     def do_statement(self, statement: ast.Statement, env: dict[str, Type]) -> None:
         """A ``do`` runs one device command, optionally storing what it returns."""
+        if isinstance(statement, ast.ExtensionNode):
+            self.report("LR0307", statement.position, "a do action must call a device command")
+            return
         call = statement.value if isinstance(statement, ast.Assignment) else statement.expression
         target = (
             self.assignable(statement.target, env)
@@ -404,6 +409,8 @@ class Typing:
                 return operand
             case ast.Binary():
                 return self._binary(expression, env)
+            case ast.ExtensionNode():
+                return expression.infer(lambda part: self.infer(part, env))
         return UNKNOWN
 
     def _unknown_unit(self, literal: ast.Quantity) -> None:

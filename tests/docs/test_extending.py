@@ -14,7 +14,8 @@ GUIDE = (ROOT / "docs" / "extending.md").read_text(encoding="utf-8")
 BLOCK = re.compile(r"^```\w+ (\S+)\n(.*?)^```$", re.MULTILINE | re.DOTALL)
 EXCERPTS = BLOCK.findall(GUIDE)
 RECIPES = (
-    "A language extension",
+    "A language extension: new syntax",
+    "A language extension: new statements and expressions",
     "A CoCo",
     "Generator template additions",
     "A generator",

@@ -43,6 +43,36 @@ def test_unfilled_hooks_match_nothing_and_stay_out_of_messages() -> None:
 
 
 def test_an_unknown_hook_is_refused() -> None:
-    wrong = GrammarExtension(MARK, (("StatementExtension", ("Mark",)),))
-    with pytest.raises(GrammarExtensionError, match="no grammar hook 'StatementExtension'"):
+    wrong = GrammarExtension(MARK, (("StateExtension", ("Mark",)),))
+    with pytest.raises(GrammarExtensionError, match="no grammar hook 'StateExtension'"):
         build_metamodel(GRAMMAR, FRAGMENTS, (wrong,))
+
+
+TWICE = "Twice: 'twice' '(' value=Expression ')';"
+BEEP = "Beep: 'beep' name=ID ';';"
+STATEMENTS_AND_EXPRESSIONS = GrammarExtension(
+    f"{TWICE}\n{BEEP}",
+    (("ExpressionExtension", ("Twice",)), ("StatementExtension", ("Beep",))),
+)
+USES = """statechart X {
+  parameters { Integer twin = 1; Integer beep = 0; }
+  initial state S;
+  state T;
+  S -> T [twice(twin + 1) > twin] go / { beep loud; beep = twin; twin = twice(twin); };
+}"""
+
+
+def test_expression_and_statement_hooks_take_new_syntax_beside_the_built_in() -> None:
+    metamodel = build_metamodel(GRAMMAR, FRAGMENTS, (STATEMENTS_AND_EXPRESSIONS,))
+    transition = metamodel.model_from_str(USES).statechart.elements[-1]
+    guard = transition.guard.operands[0].operand.primary
+    assert type(guard).__name__ == "Twice"
+    kinds = [type(s).__name__ for s in transition.action.statements]
+    assert kinds == ["Beep", "Assignment", "Assignment"]  # a name may still be 'beep'
+    assigned = transition.action.statements[2].value.operands[0].operand.primary
+    assert type(assigned).__name__ == "Twice"
+
+
+def test_without_the_extension_its_syntax_is_an_error() -> None:
+    with pytest.raises(SyntaxProblem):
+        parse_statechart(USES, "X.lr")

@@ -14,18 +14,71 @@ from lightrocks.workbench.extensions import language_extensions
 from .conftest import EXAMPLES, MODELS, PACKAGE, Environment
 
 TASK = MODELS / "peg" / "tasks" / "PegInHole.lr"
-CONTRIBUTIONS = {
-    "languages": "requirements  extends lightrocks",
-    "cocos": "PEG0002",
-    "generators": "markdown",
-    "adapters": "mujoco-guarded",
-    "scenes": "peg_in_hole",
-}
+INSERT = MODELS / "peg" / "skills" / "InsertPeg.lr"
+CONTRIBUTIONS = [
+    ("languages", "requirements  extends lightrocks"),
+    ("languages", "arithmetic  extends lightrocks"),
+    ("cocos", "PEG0002"),
+    ("cocos", "PEG0003"),
+    ("generators", "markdown"),
+    ("adapters", "mujoco-guarded"),
+    ("scenes", "peg_in_hole"),
+]
 
 
 def test_the_package_lists_its_contributions(installed: Environment) -> None:
-    for what, row in CONTRIBUTIONS.items():
+    for what, row in CONTRIBUTIONS:
         assert row in installed.lightrocks("list", what).stdout, what
+
+
+def test_base_models_check_unchanged_beside_the_new_syntax(installed: Environment) -> None:
+    result = installed.lightrocks("check", str(EXAMPLES))
+    assert (result.returncode, result.stdout.strip()) == (0, "0 error(s), 0 warning(s)")
+
+
+def test_a_count_of_a_length_is_found(installed: Environment, tmp_path: Path) -> None:
+    models = shutil.copytree(MODELS, tmp_path / "models")
+    skill = models / "peg" / "skills" / "InsertPeg.lr"
+    skill.write_text(skill.read_text().replace("count jams;", "count grip;"))
+    result = installed.lightrocks("check", str(models), "--path", str(EXAMPLES))
+    assert result.returncode == 1
+    assert "PEG0003: count needs an Integer, not Length" in result.stdout
+
+
+EDITOR_INDEX = """
+import sys
+from pathlib import Path
+from lightrocks.workbench.app.lsp.index import Index
+from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.workbench.incremental import IncrementalCheck
+models, examples, skill = (Path(a).resolve() for a in sys.argv[1:])
+checked = IncrementalCheck([models], [examples])
+checked.full()
+index = Index()
+index.update(checked.context.workspace, lambda p: Text(p.read_text()))
+occurrences = index.files[skill].occurrences
+print(sorted(o.name for o in occurrences if o.declaration and o.kind == "requirement"))
+"""
+
+
+def test_requirements_are_symbols_of_their_chart_for_editors(installed: Environment) -> None:
+    result = installed.run_python("-c", EDITOR_INDEX, str(MODELS), str(EXAMPLES), str(INSERT))
+    assert result.stdout.strip() == "['I1']", result.stderr
+
+
+def test_targets_without_a_mapping_refuse_extension_syntax_where_it_stands(
+    installed: Environment, tmp_path: Path
+) -> None:
+    for target in ("sfc", "plcopen", "ecore"):
+        output = tmp_path / target
+        result = installed.lightrocks(
+            "generate", str(INSERT), "--path", str(EXAMPLES), "--target", target, "-o", str(output)
+        )
+        assert result.returncode == 1, target
+        assert "InsertPeg.lr:13:3: the" in result.stderr, result.stderr
+        assert "does not map 'Requirement'" in result.stderr
+        assert "Traceback" not in result.stderr
+        assert not output.exists()
 
 
 def test_its_models_check_and_a_wrong_requirement_is_found(
@@ -66,6 +119,9 @@ def test_python_code_has_the_template_addition_and_the_override(
     assert "REQUIREMENTS = {" in code
     assert "'T1': ('the peg ends in the hole', 'done')," in code
     assert "class PegInHole(rt.CompositeComponent):" in code  # the rest is the built-in
+    skill = (tmp_path / "peg" / "skills" / "InsertPeg.py").read_text()
+    assert "'height': (min(max(self.grip + 0.04, 0.05), 0.15))" in skill  # clamp(…)
+    assert "self.jams = self.jams + 1" in skill  # count jams;
 
 
 def test_markdown_pages_show_requirements_and_a_state_diagram(
@@ -92,7 +148,7 @@ def test_the_task_inserts_the_peg_on_mujoco(installed: Environment) -> None:
 
 def test_after_uninstalling_the_workbench_is_the_base_one(installed: Environment) -> None:
     installed.pip("uninstall", "--yes", "lightrocks-peg")
-    for what, row in CONTRIBUTIONS.items():
+    for what, row in CONTRIBUTIONS:
         assert row not in installed.lightrocks("list", what).stdout, what
     result = installed.lightrocks("check", str(EXAMPLES))
     assert (result.returncode, result.stdout.strip()) == (0, "0 error(s), 0 warning(s)")

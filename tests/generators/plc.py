@@ -19,6 +19,7 @@ from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.generators.sfc_iec61131.build import Block, Unit
 from lightrocks.workbench.app.loading import load_component
 from lightrocks.workbench.app.run import drive
+from lightrocks.workbench.app.values import parse_delay
 
 DEFAULT_HOME = Path("/opt/matiec")
 CYCLE_MS = 1
@@ -60,7 +61,8 @@ class Scenario:
 
     ``commands`` scripts each call of a command: None settles normally, ``"error"`` faults,
     ``"timeout"`` never ends; ``sensors`` pins boolean or numeric sensors; ``events`` are sent
-    one by one once the chart rests.
+    one by one once the chart rests, and an item ``+500ms`` lets that much time pass (a
+    script with such items runs a plain chart on the virtual clock, without adapter).
     """
 
     name: str
@@ -75,7 +77,8 @@ Event = tuple[str, ...]
 
 def python_trace(scenario: Scenario, search: list[Path]) -> list[Event]:
     cls = load_component(scenario.model, search)
-    adapter = DryRunAdapter(outcomes=scenario.commands, sensors=scenario.sensors)
+    timed = any(e.startswith("+") for e in scenario.events)
+    adapter = None if timed else DryRunAdapter(outcomes=scenario.commands, sensors=scenario.sensors)
     chart = drive(cls, {}, adapter, scenario.events, None)
     events: list[Event] = []
     for record in chart.trace:
@@ -98,6 +101,17 @@ def comparable(events: list[Event], unit: Unit) -> list[Event]:
         f"{path}/{state}" for _, path, b in tree for state, outcome in b.states.values() if outcome
     }
     return [e for e in events if e[1] in (entered if e[0] == "enter" else ended)]
+
+
+def streams(events: list[Event], unit: Unit) -> dict[str, list[Event]]:
+    """The events of each orthogonal region apart, and the others: regions run side by side,
+    so only the order within one stream is the same on every target."""
+    prefixes = [f"{path}/{region}" for _, path, b in _tree(unit) for region in b.regions]
+    split: dict[str, list[Event]] = {}
+    for event in events:
+        inside = [p for p in prefixes if event[1] == p or event[1].startswith(f"{p}/")]
+        split.setdefault(max(inside, key=len, default=""), []).append(event)
+    return split
 
 
 def _tree(unit: Unit) -> list[tuple[str, str, Block]]:
@@ -183,7 +197,15 @@ def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
     program = f"{unit.resource.upper()}__{unit.instance.upper()}"
     start = unit.program.inputs[0].name.upper()
     event_inputs = {v.comment.removeprefix("event "): v.name for v in unit.program.inputs[1:]}
-    sends = [event_inputs[e] for e in scenario.events if e in event_inputs]
+    inputs = list(event_inputs.values())
+    kinds, waits = [], []  # per item: an event input's index, or -1 and the scans to wait
+    for item in scenario.events:
+        if item.startswith("+"):
+            kinds.append(-1)
+            waits.append(round(parse_delay(item) * 1000 / CYCLE_MS))
+        elif item in event_inputs:
+            kinds.append(inputs.index(event_inputs[item]))
+            waits.append(0)
     lines += [
         f"static STEP *steps[] = {{{', '.join(f'{e}.__step_list' for e, _, _ in tree)}}};",
         f"static int counts[] = {{{', '.join(str(len(b.steps)) for _, _, b in tree)}}};",
@@ -202,18 +224,27 @@ def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
         "  return changed;",
         "}",
         "int main(void) {",
-        f"  const char *events[] = {{{', '.join(chr(34) + e.upper() + chr(34) for e in sends)}}};",
-        f"  int pending = {len(sends)}, sent = 0, quiet = 0;",
+        f"  const int kinds[] = {{{', '.join(map(str, kinds or [0]))}}};",
+        f"  const long waits[] = {{{', '.join(map(str, waits or [0]))}}};",
+        f"  int pending = {len(kinds)}, sent = 0, quiet = 0;",
+        "  long waiting = 0;",
         "  config_init__();",
         f"  {program}.{start}.value = 1;",
         f"  for (unsigned long cycle = 0; cycle < {max_cycles}; cycle++) {{",
         "    emulate();",
+        *(f"    {program}.{name.upper()}.value = 0;" for name in inputs),
+        "    if (sent < pending && (waiting > 0 || quiet > 5)) {",
+        "      if (kinds[sent] < 0) {",
+        "        if (waiting == 0) waiting = waits[sent];",
+        "        if (--waiting <= 0) { waiting = 0; sent++; quiet = 0; }",
+        "      } else {",
         *(
-            f"    {program}.{name.upper()}.value = sent < pending && quiet > 5 && "
-            f'!strcmp(events[sent], "{name.upper()}");'
-            for name in dict.fromkeys(sends)
+            f"        if (kinds[sent] == {index}) {program}.{name.upper()}.value = 1;"
+            for index, name in enumerate(inputs)
         ),
-        "    if (sent < pending && quiet > 5) { sent++; quiet = 0; }",
+        "        sent++; quiet = 0;",
+        "      }",
+        "    }",
         "    config_run__(cycle);",
         f"    __CURRENT_TIME.tv_nsec += {CYCLE_MS * 1_000_000};",
         "    if (__CURRENT_TIME.tv_nsec >= 1000000000) {",

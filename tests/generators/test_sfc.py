@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from conftest import RAIL_TASK, SCREW_IN, SCREW_TASK, assert_golden, generate
 from hypothesis import given
@@ -22,6 +24,18 @@ def test_both_example_tasks_pass_the_checker(units: dict[str, str]) -> None:
     assert sorted(units) == ["AssembleRail.st", "ScrewTask.st"]
     for text in units.values():
         assert check_sfc(text) == []
+
+
+@pytest.mark.parametrize(
+    "name", ["Counter", "Router", "Lamp", "Recorder", "Crossing", "Junction", "Player"]
+)
+def test_statechart_constructs_pass_the_checker(name: str) -> None:
+    """Internal transitions, choice, time events, history and regions (generation runs the
+    checker too; here every rule is asked directly)."""
+    plant = Path(__file__).parent / "models" / "plant"
+    text = generate("sfc", [plant / f"{name}.lr"], search=[plant.parent])[f"{name}.st"]
+    assert check_sfc(text) == []
+    assert "FUNCTION_BLOCK " + name in text
 
 
 @pytest.mark.parametrize("name", ["ScrewTask.st", "AssembleRail.st"])
@@ -141,21 +155,31 @@ def test_names_of_different_kinds_never_meet(claims: list[tuple[str, int, str]])
 
 
 @pytest.mark.parametrize(
-    ("body", "what"),
+    ("body", "found"),
     [
-        ("choice C; A -> C go; C -> B [n > 0]; C -> A;", "choice pseudostate 'C'"),
-        ("A -> B after(2 s);", "time event"),
-        ("A -> B go; B -> A back;", ""),
+        ("choice C; A -> C go; C -> B [n > 0]; C -> A;", "go AND (NOT (go AND (n_1 > 0)))"),
+        ("A -> B after(2 s); B -> A after(n * 1 s);", "REAL_TO_TIME(n_1 * 1.0)"),
+        ("A -> B go; B -> A back;", "FROM A TO B"),
     ],
 )
-def test_constructs_without_sfc_mapping_are_refused(tmp_path, body: str, what: str) -> None:
+def test_plain_constructs_are_mapped(tmp_path, body: str, found: str) -> None:
     model = tmp_path / "Gate.lr"
     model.write_text(
-        "statechart Gate {\n  parameters { Integer n = 0; }\n  initial state A;\n  state B;\n"
+        "statechart Gate {\n  parameters { Real n = 0; }\n  initial state A;\n  state B;\n"
         f"  {body}\n}}\n"
     )
-    if not what:
-        assert "FUNCTION_BLOCK Gate" in generate("sfc", [model], search=[tmp_path])["Gate.st"]
-        return
-    with pytest.raises(GenerationError, match=f"Gate.lr:5:.*does not map a {what}"):
+    assert found in generate("sfc", [model], search=[tmp_path])["Gate.st"]
+
+
+def test_an_internal_transition_over_a_running_child_is_refused(tmp_path) -> None:
+    (tmp_path / "Inner.lr").write_text(
+        "statechart Inner {\n  initial state A;\n  final state Z;\n  A -> Z go;\n}\n"
+    )
+    model = tmp_path / "Gate.lr"
+    model.write_text(
+        "statechart Gate {\n  parameters { Integer n = 0; }\n  initial state W {\n"
+        "    internal tick / { n = n + 1; };\n"
+        '    <<import="Inner">> initial state I;\n  }\n}\n'
+    )
+    with pytest.raises(GenerationError, match=r"Gate.lr:4:5: .*internal transition over a running"):
         generate("sfc", [model], search=[tmp_path])

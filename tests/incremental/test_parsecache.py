@@ -72,8 +72,11 @@ def test_the_key_covers_grammar_text_and_file(monkeypatch: pytest.MonkeyPatch) -
     key = parsecache._key(language, "text", "A.lr")
     assert key != parsecache._key(language, "text ", "A.lr")
     assert key != parsecache._key(language, "text", "B.lr")
+    monkeypatch.setattr(parsecache, "extensions_digest", lambda language: "an extension")
+    extended = parsecache._key(language, "text", "A.lr")
+    assert extended != key  # the syntax of installed extensions
     monkeypatch.setattr(parsecache, "grammar_digest", lambda module: "another grammar")
-    assert key != parsecache._key(language, "text", "A.lr")
+    assert parsecache._key(language, "text", "A.lr") not in (key, extended)
 
 
 def test_a_second_check_reads_every_file_from_the_store(

@@ -271,3 +271,18 @@ def test_an_outcome_is_never_taken_as_an_external_event(build):
     assert chart.active_configuration == ("Q", "Job", "Load")
     assert chart.send("load")
     assert chart.active_configuration == ("Q", "Idle")
+
+
+def test_a_disabled_trace_keeps_nothing_and_changes_nothing(build):
+    cls = build({"Seq": SEQ}, "Seq")
+    kept = cls().start(kept_adapter := DryRunAdapter())
+    silent = cls().start(silent_adapter := DryRunAdapter(), trace=Trace(keep=False))
+    assert silent.trace == []
+    assert (silent.outcome, silent.n, silent.env.part.count) == ("done", 2, 2)
+    assert silent_adapter.calls == kept_adapter.calls
+    heard = []
+    trace = Trace(keep=False)
+    trace.listeners.append(heard.append)
+    cls().start(DryRunAdapter(), trace=trace)
+    assert trace.records == []
+    assert heard == kept.trace, "a listener enables the trace"

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections import ChainMap
 from collections.abc import Callable, Iterable, Iterator, Mapping
-from dataclasses import dataclass, field, fields, is_dataclass
+from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 from typing import Any
@@ -22,6 +22,7 @@ from lightrocks.languages.domain.types import UNKNOWN, Type, describe
 from lightrocks.metamodel import ast, printer
 from lightrocks.workbench.app.lsp.spans import span
 from lightrocks.workbench.app.lsp.text import Text, contains
+from lightrocks.workbench.extensions import symbol_kind
 from lightrocks.workbench.workspace import Loaded, Workspace, shown_name
 
 Key = tuple[Path, int, int]  # the file and 0-based start of a declared name
@@ -337,7 +338,7 @@ class _Builder:
 
     def expressions(self, node: Any, values: ChainMap[str, tuple[Key, str]]) -> None:
         """Resolve every name and device member below a node of an expression or statement."""
-        for found in _walk(node):
+        for found in ast.walk(node):
             if isinstance(found, ast.Name) and found.name in values:
                 key, kind = values[found.name]
                 self.refer(found.position, found.name, kind, key)
@@ -444,15 +445,5 @@ def _declarations(elements: Iterable[Any]) -> Iterator[tuple[Any, str]]:
             yield element, "pseudostate"
         elif isinstance(element, ast.Event):
             yield element, "event"
-
-
-def _walk(node: Any) -> Iterator[Any]:
-    """Every dataclass node below ``node`` (tuples and optional fields included)."""
-    if isinstance(node, tuple | list):
-        for item in node:
-            yield from _walk(item)
-    elif is_dataclass(node) and not isinstance(node, ast.Position):
-        yield node
-        for item in fields(node):
-            if item.name != "position":
-                yield from _walk(getattr(node, item.name))
+        elif (kind := symbol_kind(element)) is not None:
+            yield element, kind

@@ -15,4 +15,5 @@ EXTENSION = LanguageExtension(
     cocos=COCOS,
     templates=Path(__file__).parents[1] / "templates",
     description="requirement elements traced to the outcomes that verify them",
+    symbols={Requirement: "requirement"},
 )
