@@ -1,38 +1,44 @@
-"""Robustness of both case studies under perception noise, in MuJoCo.
+"""Robustness of the case studies under perception noise, in MuJoCo: the envelope.
 
-Run: ``.venv/bin/python benchmarks/bench_case_studies.py [seeds] [workers]`` (default 20 seeds,
-one worker per core). Each case study first runs once without noise in this process: the
-baseline. Then it runs once per seed with 2 mm / 2 deg camera noise (Gaussian, per axis and
-about a random axis) in worker processes. A run succeeds when the task ends in its success
-outcome and the scene's ground truth agrees (screw seated; all three terminals latched). The
-script prints, per case study, the successes with their 95 % Wilson interval, the simulated
-time of the noisy runs against the baseline's, and the wall time per simulated second. The
-goal: at least 95 % of the noisy runs succeed.
+Run: ``.venv/bin/python benchmarks/bench_case_studies.py [--seeds N] [--seed-offset S]
+[--noise 0mm,0deg 2mm,2deg ...] [--case din_rail ...] [--workers K] [--plot FILE.png]``
+(default: 20 seeds from 0, 2 mm / 2 deg, every case study, one worker per core).
+
+Each case study runs once per seed and noise level (Gaussian camera noise, per axis and about a
+random axis) in worker processes. A run succeeds when the task ends in its success outcome and
+the scene's ground truth agrees (screw seated; all three terminals latched). Per case study and
+level the script prints the successes with their 95 % Wilson interval, the simulated time and
+the wall time per simulated second, and the seeds that failed. ``--plot`` draws success
+against noise, one line per case study, with the sweep's plot. Measure on seeds that were not
+used while tuning the models (e.g. ``--seed-offset 1000``).
 """
 
 from __future__ import annotations
 
+import argparse
+import csv
 import math
+import signal
 import statistics
-import sys
 import time
 from pathlib import Path
 
 from lightrocks.adapters.scenes import goal_met
-from lightrocks.workbench.app.run import RunResult, run_once
+from lightrocks.workbench.app.errors import RunError
+from lightrocks.workbench.app.run import RunResult
 from lightrocks.workbench.app.seeds import run_seeds, wilson
+from lightrocks.workbench.app.sweep import GridPoint, PointSummary, plot_png
+from lightrocks.workbench.app.values import Noise, parse_noise
 
 ROOT = Path(__file__).resolve().parents[1]
-NOISE = (0.002, math.radians(2.0))
 GOAL = 0.95
 """Share of noisy runs that must succeed."""
 
-
-CASE_STUDIES = [  # (name, scene, task)
-    ("screwing", "screwing", ROOT / "examples/screwing/tasks/ScrewTask.lr"),
-    ("din_rail", "din_rail", ROOT / "examples/din_rail/tasks/AssembleRail.lr"),
-    ("din_rail_ahead", "din_rail", ROOT / "examples/din_rail_ahead/tasks/AssembleRailAhead.lr"),
-]
+CASE_STUDIES = {  # name: (scene, task)
+    "screwing": ("screwing", ROOT / "examples/screwing/tasks/ScrewTask.lr"),
+    "din_rail": ("din_rail", ROOT / "examples/din_rail/tasks/AssembleRail.lr"),
+    "din_rail_ahead": ("din_rail", ROOT / "examples/din_rail_ahead/tasks/AssembleRailAhead.lr"),
+}
 
 
 def succeeded(scene: str, result: RunResult) -> bool:
@@ -40,38 +46,127 @@ def succeeded(scene: str, result: RunResult) -> bool:
     return result.success and goal_met(scene, result.measurements)
 
 
+def label(noise: Noise) -> str:
+    return f"{noise[0] * 1e3:g} mm / {math.degrees(noise[1]):g} deg"
+
+
+def measure(name: str, seeds: range, noise: Noise, workers: int | None) -> PointSummary:
+    """Run one case study at one noise level over ``seeds`` and print its figures. Ended
+    early (Ctrl-C, SIGTERM), it reports the runs that finished and raises KeyboardInterrupt."""
+    scene, model = CASE_STUDIES[name]
+    start = time.perf_counter()
+    results: list[RunResult] = []
+
+    def report(result: RunResult) -> None:  # as each run ends: a long sweep shows its progress
+        results.append(result)
+        verdict = "ok" if succeeded(scene, result) else "FAILED"
+        print(f"  seed {result.seed}: {result.outcome} {verdict}", flush=True)
+
+    interrupted = False
+    try:
+        run_seeds(model, [], [], "mujoco", seeds, noise, workers=workers, done=report)
+    except KeyboardInterrupt:
+        interrupted = True
+        print(f"  ended early: {len(results)} of {len(seeds)} runs finished")
+    if not results:
+        raise KeyboardInterrupt
+    wall = time.perf_counter() - start
+    wins = sum(succeeded(scene, r) for r in results)
+    low, high = wilson(wins, len(results))
+    times = [r.time for r in results]
+    print(
+        f"{name:15} {label(noise):17} {wins:4}/{len(results):<4} "
+        f"{wins / len(results):6.1%}  [{low:6.1%}, {high:6.1%}]  "
+        f"sim {statistics.mean(times):5.1f} ± {statistics.pstdev(times):4.1f} s  "
+        f"wall {wall / sum(times):.3f} s per sim s  "
+        f"goal >= {GOAL:.0%}: {'met' if wins >= GOAL * len(results) else 'NOT met'}",
+        flush=True,
+    )
+    believed = sum(r.success for r in results)
+    if believed != wins:
+        print(f"  the task believed it succeeded {believed} times")
+    failures = [f"{r.seed}: {r.outcome}" for r in results if not succeeded(scene, r)]
+    if failures:
+        print("  failed seeds " + "; ".join(sorted(failures)), flush=True)
+    summary = PointSummary(GridPoint((name,), noise), len(results), wins)
+    if interrupted:
+        raise PartialRun(summary)
+    return summary
+
+
+class PartialRun(KeyboardInterrupt):
+    """A sweep ended early, with the summary of the runs that finished."""
+
+    def __init__(self, summary: PointSummary) -> None:
+        super().__init__()
+        self.summary = summary
+
+
+def record(table: Path, seeds: range, summaries: list[PointSummary]) -> list[PointSummary]:
+    """Append the summaries to a CSV table and return every summary it holds, so that runs of
+    this script in parallel (say one per noise level) add up to one picture."""
+    fields = ["case", "noise_m", "noise_rad", "first_seed", "runs", "successes"]
+    new = not table.exists()
+    with table.open("a", newline="", encoding="utf-8") as stream:
+        writer = csv.writer(stream)
+        if new:
+            writer.writerow(fields)
+        for s in summaries:
+            writer.writerow([s.point.params[0], *s.point.noise, seeds.start, s.runs, s.successes])
+    with table.open(newline="", encoding="utf-8") as stream:
+        rows = list(csv.DictReader(stream))
+    rows.sort(key=lambda row: (row["case"], float(row["noise_m"]), float(row["noise_rad"])))
+    return [
+        PointSummary(
+            GridPoint((row["case"],), (float(row["noise_m"]), float(row["noise_rad"]))),
+            int(row["runs"]),
+            int(row["successes"]),
+        )
+        for row in rows
+    ]
+
+
 def main() -> None:
-    seeds = int(sys.argv[1]) if len(sys.argv) > 1 else 20
-    workers = int(sys.argv[2]) if len(sys.argv) > 2 else None
-    print(f"{seeds} seeds per case study, perception noise 2 mm / 2 deg, MuJoCo")
-    for name, scene, model in CASE_STUDIES:
-        start = time.perf_counter()
-        baseline = run_once(model, [], [], "mujoco")
-        baseline_wall = time.perf_counter() - start
-        start = time.perf_counter()
-        results = run_seeds(model, [], [], "mujoco", range(seeds), NOISE, workers=workers)
-        wall = time.perf_counter() - start
-        wins = sum(succeeded(scene, r) for r in results)
-        believed = sum(r.success for r in results)
-        low, high = wilson(wins, seeds)
-        times = [r.time for r in results]
-        failures = [f"seed {r.seed}: {r.outcome}" for r in results if not succeeded(scene, r)]
-        verdict = "met" if wins >= GOAL * seeds else "NOT met"
-        print(f"\n{name}: {wins}/{seeds} succeeded (95 % interval {low:.0%}-{high:.0%}; "
-              f"goal >= {GOAL:.0%}: {verdict})")  # fmt: skip
-        print(f"  task outcome says success: {believed}/{seeds}")
-        print(f"  baseline (no noise): {baseline.outcome}, {baseline.time:.1f} s simulated")
-        print(
-            f"  simulated time {statistics.mean(times):.1f} ± {statistics.pstdev(times):.1f} s "
-            f"(min {min(times):.1f}, max {max(times):.1f}), "
-            f"{statistics.mean(times) / baseline.time:.2f}x the baseline"
-        )
-        print(
-            f"  wall time: baseline {baseline_wall / baseline.time:.3f} s per simulated s; "
-            f"{seeds} seeds in {wall:.1f} s"
-        )
-        if failures:
-            print("  failed: " + "; ".join(failures))
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seeds", type=int, default=20, help="runs per case study and level")
+    parser.add_argument("--seed-offset", type=int, default=0, help="the first seed")
+    parser.add_argument(
+        "--noise", nargs="+", default=["2mm,2deg"], metavar="LENGTH,ANGLE", help="noise levels"
+    )
+    parser.add_argument("--case", nargs="+", choices=list(CASE_STUDIES), default=None)
+    parser.add_argument("--workers", type=int, help="processes (default: one per core)")
+    parser.add_argument("--plot", type=Path, help="write success against noise as PNG here")
+    parser.add_argument(
+        "--table", type=Path, help="append the figures to this CSV; --plot then draws all of it"
+    )
+    args = parser.parse_args()
+    if args.seeds < 1:
+        parser.error("--seeds must be at least 1")
+    try:
+        levels = [parse_noise(text) for text in args.noise]
+    except RunError as error:
+        parser.error(str(error))
+    cases = [c for c in args.case or CASE_STUDIES if CASE_STUDIES[c][1].is_file()]
+    seeds = range(args.seed_offset, args.seed_offset + args.seeds)
+    print(
+        f"seeds {seeds.start}..{seeds.stop - 1}, MuJoCo; success, 95 % Wilson interval",
+        flush=True,
+    )
+    signal.signal(signal.SIGTERM, signal.default_int_handler)  # ends early like Ctrl-C
+    summaries: list[PointSummary] = []
+    try:
+        for name in cases:
+            for noise in levels:
+                summaries.append(measure(name, seeds, noise, args.workers))
+    except PartialRun as partial:
+        summaries.append(partial.summary)
+    except KeyboardInterrupt:
+        pass
+    if args.table:
+        summaries = record(args.table, seeds, summaries)
+    if args.plot and summaries:
+        args.plot.write_bytes(plot_png("case studies", summaries))
+        print(f"plot written to {args.plot}")
 
 
 if __name__ == "__main__":

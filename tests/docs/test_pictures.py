@@ -13,7 +13,9 @@ from lightrocks.workbench.generators import GenerationRequest, load_generator
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
-PICTURES = sorted((ROOT / "docs" / "images").glob("*.png"))
+PICTURES = sorted(  # statechart pictures: drawn from a DOT file beside them
+    p for p in (ROOT / "docs" / "images").glob("*.png") if p.with_suffix(".dot").is_file()
+)
 
 
 def current_dot(qualified_name: str) -> str:

@@ -119,6 +119,56 @@ def test_a_screw_that_is_not_gripped_is_tried_again_then_given_up() -> None:
     assert abs(result.measurements["screw_depth"]) < 1e-4
 
 
+def outcomes(trace: Path, state: str) -> list[str]:
+    """The outcomes of every run of ``state`` (a path), in order, from a trace."""
+    events = [json.loads(line) for line in trace.read_text(encoding="utf-8").splitlines()]
+    return [e["outcome"] for e in events if e["kind"] == "outcome" and e["state"] == state]
+
+
+@pytest.mark.parametrize(("across", "side"), [("7 mm", "Plus"), ("-7 mm", "Minus")])
+def test_a_terminal_set_down_off_the_centre_line_sidesteps_onto_it(
+    tmp_path: Path, across: str, side: str
+) -> None:
+    """7 mm across the rail is beyond the latch ramps' lead-in: pushed there, the terminal
+    stands on a lip and never clicks. The touch feels the twist, the hand steps towards the
+    centre line and touches again; every terminal latches."""
+    trace = tmp_path / "run.jsonl"
+    result = run_once(ASSEMBLE_RAIL, [], [f"across={across}"], "mujoco", trace=trace)
+    assert all_latched(result), result
+    for n in (1, 2, 3):
+        touches = outcomes(trace, f"AssembleRail/PlugTerminal{n}/PressOn/Down")
+        assert touches == [f"offCentre{side}", "touched"]
+
+
+def test_a_terminal_that_meets_the_rail_while_lowered_backs_off_and_goes_on(
+    tmp_path: Path,
+) -> None:
+    """A clearance below zero is a camera that sees the rail too low: every terminal meets
+    the rail while it is lowered. The hand backs off and the push starts from there."""
+    trace = tmp_path / "run.jsonl"
+    result = run_once(ASSEMBLE_RAIL, [], ["clearance=-3 mm"], "mujoco", trace=trace)
+    assert all_latched(result), result
+    for n in (1, 2, 3):
+        assert outcomes(trace, f"AssembleRail/PlugTerminal{n}/BringToRail/Lower") == ["collision"]
+        assert outcomes(trace, f"AssembleRail/PlugTerminal{n}/BringToRail") == ["above"]
+
+
+def test_a_push_that_jams_is_tried_again_then_the_terminal_is_kept_in_the_hand(
+    tmp_path: Path,
+) -> None:
+    """12 mm across the rail, one latch stands on the rail's top without a twist the touch
+    could feel, and the push jams. The hand backs off and pushes once more, then gives up
+    with the terminal in the hand, lifted clear: nothing is left half-latched."""
+    trace = tmp_path / "run.jsonl"
+    result = run_once(ASSEMBLE_RAIL, [], ["across=12 mm"], "mujoco", trace=trace)
+    assert result.outcome == "failed"
+    assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn/Push") == ["jammed", "jammed"]
+    assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn") == ["jammed"]
+    assert not result.measurements["terminal1_latched"]
+    assert result.measurements["terminal1_height"] > 0.01
+    assert tasks_in_order(result) == ["AssembleRail/PlugTerminal1"]
+
+
 def test_reordering_the_rail_tasks_changes_only_the_sequence_model(tmp_path: Path) -> None:
     examples = tmp_path / "examples"
     shutil.copytree(EXAMPLES, examples)
