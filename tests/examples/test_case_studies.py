@@ -119,12 +119,6 @@ def test_a_screw_that_is_not_gripped_is_tried_again_then_given_up() -> None:
     assert abs(result.measurements["screw_depth"]) < 1e-4
 
 
-def outcomes(trace: Path, state: str) -> list[str]:
-    """The outcomes of every run of ``state`` (a path), in order, from a trace."""
-    events = [json.loads(line) for line in trace.read_text(encoding="utf-8").splitlines()]
-    return [e["outcome"] for e in events if e["kind"] == "outcome" and e["state"] == state]
-
-
 @pytest.mark.parametrize(("across", "side"), [("7 mm", "Plus"), ("-7 mm", "Minus")])
 def test_a_terminal_set_down_off_the_centre_line_sidesteps_onto_it(
     tmp_path: Path, across: str, side: str
