@@ -26,6 +26,8 @@ pytest.importorskip("selenium", reason="the browser tests need selenium (the 'de
 
 ROOT = Path(__file__).resolve().parents[2]
 SCREW_TASK = ROOT / "examples" / "screwing" / "tasks" / "ScrewTask.lr"
+SCREWED = ("--script", str(ROOT / "examples" / "screwing" / "screwed.dryrun.json"))
+"""The dry run's outcomes of a run that screws the screw home, as MuJoCo gives them."""
 CHROMIUM = os.environ.get("CHROMIUM", shutil.which("chromium") or "")
 CHROMEDRIVER = os.environ.get("CHROMEDRIVER", shutil.which("chromedriver") or "")
 WAIT = 300.0
@@ -154,7 +156,8 @@ def test_requests_without_the_token_are_refused(launch) -> None:
 
 @pytest.mark.parametrize("adapter", ["dryrun", pytest.param("mujoco", marks=pytest.mark.slow)])
 def test_step_breakpoint_and_abort(adapter: str, launch, browser, tmp_path: Path) -> None:
-    url, trace, process = launch("run", str(SCREW_TASK), "--adapter", adapter, "--paused")
+    script = SCREWED if adapter == "dryrun" else ()
+    url, trace, process = launch("run", str(SCREW_TASK), "--adapter", adapter, "--paused", *script)
     page = Page(browser, url)
     page.until(lambda: page.text("state") == "paused" and page.active == "ScrewTask")
 
@@ -211,17 +214,17 @@ def test_step_breakpoint_and_abort(adapter: str, launch, browser, tmp_path: Path
 
 def test_breakpoint_from_the_command_line_and_resume_to_the_end(launch, browser) -> None:
     url, trace, process = launch(
-        "run", str(SCREW_TASK), "--adapter", "dryrun", "--break", "ScrewTask.Carry"
+        "run", str(SCREW_TASK), "--adapter", "dryrun", *SCREWED, "--break", "ScrewTask.Carry"
     )
     page = Page(browser, url)
     page.until(lambda: page.text("state") == "paused at ScrewTask/Carry")
-    assert page.active == "ScrewTask.Carry"
+    assert page.active == "ScrewTask/Carry"
     page.press("resume")
     page.until(lambda: page.text("summary") == "outcome: screwed")
     page.until(lambda: page.text("state") == "run over")
     assert process.wait(timeout=WAIT) == 0
     run = records(trace)
-    assert [r.get("at") for r in run if r["kind"] == "paused"] == ["ScrewTask.Carry"]
+    assert [r.get("at") for r in run if r["kind"] == "paused"] == ["ScrewTask/Carry"]
     assert run[-1]["kind"] == "finished" and run[-1]["outcome"] == "screwed"
 
 
@@ -254,7 +257,7 @@ def active_at(run: list[dict], time: float) -> str:
 def test_replay_with_the_time_slider(launch, browser, tmp_path: Path) -> None:
     trace = tmp_path / "recorded.jsonl"
     command = [sys.executable, "-m", "lightrocks.workbench.app.cli", "run", str(SCREW_TASK)]
-    command += ["--adapter", "dryrun", "--trace", str(trace)]
+    command += ["--adapter", "dryrun", *SCREWED, "--trace", str(trace)]
     subprocess.run(command, check=True, capture_output=True)
     run = records(trace)
     url, _, _ = launch("replay", str(trace))
