@@ -177,6 +177,12 @@ def test_a_worker_lost_mid_sweep_costs_no_run(client: Client):
     ]
 
 
+def _interruptible() -> None:
+    """Ctrl-C reaches the child as it would from a terminal: a test runner's worker may
+    ignore SIGINT, and a child inherits that."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @pytest.mark.slow
 def test_ctrl_c_cancels_the_sweep_and_writes_nothing(tmp_path: Path):
     output = tmp_path / "cancelled"
@@ -185,7 +191,9 @@ def test_ctrl_c_cancels_the_sweep_and_writes_nothing(tmp_path: Path):
         *("--path", str(EXAMPLES), "--adapter", "dryrun", "--seeds", "400", "--workers", "2"),
         *("-o", str(output)),
     ]
-    process = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
+    process = subprocess.Popen(
+        command, stderr=subprocess.PIPE, text=True, preexec_fn=_interruptible
+    )
     time.sleep(8)  # starting, or running: Ctrl-C cancels either way
     process.send_signal(signal.SIGINT)
     _, error = process.communicate(timeout=60)
