@@ -138,11 +138,12 @@ def transition_ends_resolve(context: object) -> Iterator[Finding]:
 
 def _transition_ends(
     context: object,
-) -> Iterator[tuple[Region, list[str], dict[str, str], str, ast.Position]]:
-    """Every source and target of a transition with the names of its own region and the
-    states of the sibling regions (see :func:`_sibling_regions`)."""
+) -> Iterator[tuple[Region, dict[str, None], dict[str, str], str, ast.Position]]:
+    """Every source and target of a transition with the names of its own region (in
+    declaration order, looked up in constant time) and the states of the sibling regions
+    (see :func:`_sibling_regions`)."""
     for _, region in _own_regions(analysis(context)):
-        own = [*region.states, *region.conditions, *region.pseudostates]
+        own = dict.fromkeys([*region.states, *region.conditions, *region.pseudostates])
         elsewhere = _sibling_regions(region)
         for transition in region.transitions:
             yield region, own, elsewhere, transition.source, transition.source_position
