@@ -147,4 +147,7 @@ _FRIENDLY = {
     "Number": "a number",
     "UnitSymbol": "a unit",
     "Comment": "a comment",
+    "BinaryOperator": "an operator",
+    "UnaryOperator": "a unary operator",
+    "BooleanValue": "true or false",
 }
