@@ -16,11 +16,18 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 
 from lightrocks.generators.selection import is_action, reachable
-from lightrocks.generators.sfc_iec61131.expressions import Scope, literal, time_literal
+from lightrocks.generators.sfc_iec61131.expressions import (
+    Scope,
+    convert,
+    literal,
+    number_type,
+    time_literal,
+)
 from lightrocks.generators.sfc_iec61131.names import Namer
 from lightrocks.languages.domain.types import (
     BOOLEAN,
     FRAME,
+    NUMBER,
     STRING,
     DeviceT,
     ObjectT,
@@ -228,7 +235,7 @@ class UnitBuilder:
                 variable = Variable(name, self.st_type(parameter_type))
                 parameters[parameter.name] = variable.name
                 block.inputs.append(variable)
-                initial = literal(parameter.default) if parameter.default else None
+                initial = literal(parameter.default, parameter_type) if parameter.default else None
                 if initial:
                     default = Variable(names.claim(f"{variable.name}_default"), variable.type)
                     default.initial = initial
@@ -430,7 +437,7 @@ class ComponentBuilder:
             if isinstance(declared, ObjectT):
                 block.in_outs.append(variable)
             else:
-                variable.initial = literal(parameter.default) if parameter.default else ""
+                variable.initial = literal(parameter.default, declared) if parameter.default else ""
                 block.inputs.append(variable)
         self.scope.names.update(block.parameters)
         for outcome in ("done", "error", *region.outcomes):
@@ -521,7 +528,7 @@ class ComponentBuilder:
                 duration = (
                     time_literal(float(duration))
                     if duration is not None
-                    else f"REAL_TO_TIME({self.scope.compile(transition.delay)})"
+                    else f"REAL_TO_TIME({self.scope.compile(transition.delay, NUMBER)})"
                 )
                 timer = Timer(transition, instance, passed, duration)
                 self.timers.setdefault(id(node) if node else None, []).append(timer)
@@ -1104,8 +1111,10 @@ class ComponentBuilder:
         instance = self.names.claim(f"{step}_fb")
         self.block.locals.append(Variable(instance, child.name))
         self.block.instances[instance] = "/".join(node.path)
+        signature = self.unit.typing.component_signature(info.imported)
+        declared = {name: t for name, t, _ in signature.parameters}
         bound = [
-            f"{child.parameters[a.name]} := {self.scope.compile(a.value)}"
+            f"{child.parameters[a.name]} := {self.scope.compile(a.value, declared.get(a.name))}"
             for a in info.state.arguments
             if a.name in child.parameters
         ]
@@ -1140,10 +1149,10 @@ class ComponentBuilder:
             variable = Variable(name, self.unit.st_type(declared))
             substitutes[parameter.name] = variable.name
             self.block.locals.append(variable)
-            initial = literal(parameter.default) if parameter.default else None
+            initial = literal(parameter.default, declared) if parameter.default else None
             variable.initial = initial or ""
             if value is not None and (parameter.name in arguments or not initial):
-                assignments += self.scope.assign(ast.Name(variable.name), value)
+                assignments += self.scope.assign(ast.Name(variable.name), value, declared)
         scope = self._scope(region, substitutes)
         start, stop, store, device, instance = self._command(region, scope)
         self.stops[id(node)] = stop
@@ -1185,15 +1194,21 @@ class ComponentBuilder:
         block = self.unit.device_block(device)
         flag, parameters, result = block.commands[call.function.name]
         command = next(c for c in device.device.commands if c.name == call.function.name)
+        loaded = self.unit.typing._declaring(device.device)
+        resolve = self.unit.typing.types.resolve
+        declared = {p.name: resolve(loaded, p.type) for p in command.parameters}
         order = [p.name for p in command.parameters]
         bound = [f"{flag} := TRUE"]
         for position, argument in enumerate(call.arguments):
             name = argument.name or order[position]
-            bound.append(f"{parameters[name]} := {scope.compile(argument.value)}")
+            bound.append(f"{parameters[name]} := {scope.compile(argument.value, declared[name])}")
         instance = scope.compile(call.function.target)
         store = []
         if isinstance(statement, ast.Assignment) and result:
-            store.append(f"{scope.compile(statement.target)} := {instance}.{result};")
+            returned = number_type(resolve(loaded, command.returns))
+            wanted = number_type(scope.infer(statement.target))
+            value = convert(f"{instance}.{result}", returned, wanted, statement.position)
+            store.append(f"{scope.compile(statement.target)} := {value};")
         stop = [f"{instance}({flag} := FALSE);"]
         return [f"{instance}({', '.join(bound)});"], stop, store, device, instance
 

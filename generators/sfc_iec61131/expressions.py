@@ -1,14 +1,24 @@
-"""LightRocks expressions compiled to Structured Text: data in, text out, never evaluated."""
+"""LightRocks expressions compiled to Structured Text: data in, text out, never evaluated.
+
+Integers are DINT, every other quantity is REAL, and IEC 61131-3 converts neither into the
+other by itself. Numbers therefore meet as they do at run time: an Integer operand that
+meets a REAL one, or that stands where a REAL is declared, becomes REAL (``DINT_TO_REAL``,
+or a REAL literal); ``/`` divides as REAL, as Python's true division does; ``%`` is the
+floored remainder of Python, whose sign follows the divisor.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from lightrocks.languages.domain.types import FRAME, DeviceT, Type
+from lightrocks.languages.domain.types import FRAME, NUMBER, DeviceT, QuantityT, Type, VectorT
 from lightrocks.metamodel import ast
+from lightrocks.workbench.generators import GenerationError
 
 OPERATORS = {"&&": "AND", "||": "OR", "==": "=", "!=": "<>", "%": "MOD"}
+ARITHMETIC = ("+", "-", "*", "/", "%")
+COMPARISONS = ("==", "!=", "<", "<=", ">", ">=")
 FUNCTIONS = {
     "abs": "ABS",
     "min": "MIN",
@@ -18,6 +28,9 @@ FUNCTIONS = {
     "rotZ": "ROT_Z",
     "transl": "TRANSL",
 }
+FRAME_BUILDERS = ("rotX", "rotY", "rotZ", "transl")  # their arguments are REAL
+DINT, REAL = "DINT", "REAL"
+DECLARED = {DINT: QuantityT("Integer"), REAL: NUMBER}  # a LightRocks type of each
 
 
 ESCAPES = {"$": "$$", "'": "$'", "\n": "$N", "\r": "$R", "\t": "$T", "\f": "$P"}
@@ -55,24 +68,61 @@ def time_literal(seconds: float) -> str:
     return f"T#{milliseconds}ms"
 
 
-def literal(expression: ast.Expression) -> str | None:
-    """The ST text of a constant (usable as an initial value), or None if not constant."""
+def number_type(declared: Type | None) -> str | None:
+    """DINT for an Integer, REAL for any other quantity, None for what is no number."""
+    if isinstance(declared, QuantityT):
+        return DINT if declared.name == "Integer" else REAL
+    return None
+
+
+def _integral(quantity: ast.Quantity) -> bool:
+    """Written as a whole number without unit: an int at run time, as in the Python target."""
+    plain = not quantity.unit and not any(c in quantity.text for c in ".eE")
+    return plain and float(quantity.value).is_integer()
+
+
+def convert(text: str, have: str | None, want: str | None, position: ast.Position) -> str:
+    """``text``, a value of ST type ``have``, as one of ``want``: an Integer widens to REAL;
+    a REAL has no place in a DINT (at run time it would keep its fraction)."""
+    if want is None or have is None or have == want:
+        return text
+    if want == REAL:
+        return f"DINT_TO_REAL({text})"
+    raise GenerationError(
+        f"{position}: a Real value where an Integer is declared: "
+        "the SFC target keeps Integers as DINT"
+    )
+
+
+def literal(expression: ast.Expression, declared: Type | None = None) -> str | None:
+    """The ST text of a constant (usable as an initial value), or None if not constant;
+    a number is written as the ST type of ``declared`` when given."""
     match expression:
-        case ast.Quantity(value=value, unit=unit, text=text):
-            if not unit and float(value).is_integer() and "." not in text:
+        case ast.Quantity(value=value):
+            have = DINT if _integral(expression) else REAL
+            want = number_type(declared) or have
+            if want == DINT and float(value).is_integer():
                 return str(int(value))
-            return real(value)
+            if want == REAL:
+                return real(value)
+            return convert(real(value), have, want, expression.position)
         case ast.BooleanLiteral(value=value):
             return "TRUE" if value else "FALSE"
         case ast.StringLiteral(value=value):
             return string_literal(value)
         case ast.Unary(operator="-", operand=operand):
-            inner = literal(operand)
+            inner = literal(operand, declared)
             return None if inner is None else (inner[1:] if inner[0] == "-" else f"-{inner}")
         case ast.VectorLiteral(elements=elements):
-            parts = [literal(e) for e in elements]
+            element = _element(declared)
+            parts = [literal(e, element) for e in elements]
             return None if None in parts else "[" + ", ".join(parts) + "]"
     return None
+
+
+def _element(declared: Type | None) -> Type | None:
+    """The declared type of a vector's elements: that of its ST array (the first one's)."""
+    return declared.elements[0] if isinstance(declared, VectorT) and declared.elements else None
 
 
 @dataclass
@@ -84,7 +134,43 @@ class Scope:
     sensor: Callable[[DeviceT, str], str]
     field: Callable[[str], str]
 
-    def compile(self, expression: ast.Expression) -> str:
+    def compile(self, expression: ast.Expression, declared: Type | None = None) -> str:
+        """The ST text of ``expression``; as the ST number type of ``declared`` when given."""
+        return self._as(expression, number_type(declared))[0]
+
+    def number(self, expression: ast.Expression) -> str | None:
+        """The ST number type of ``expression`` as the compiled text computes it, or None."""
+        match expression:
+            case ast.Quantity():
+                return DINT if _integral(expression) else REAL
+            case ast.Unary(operator="-", operand=operand):
+                return self.number(operand)
+            case ast.Binary(operator=operator, left=left, right=right) if operator in ARITHMETIC:
+                kinds = {self.number(left), self.number(right)}
+                if None in kinds:
+                    return None
+                return REAL if operator == "/" or REAL in kinds else DINT
+            case ast.Binary():
+                return None
+            case ast.Call(function=ast.Name(name="abs" | "min" | "max"), arguments=arguments):
+                kinds = {self.number(a.value) for a in arguments}
+                return REAL if REAL in kinds else (DINT if kinds == {DINT} else None)
+        return number_type(self.infer(expression))
+
+    def _as(self, expression: ast.Expression, want: str | None) -> tuple[str, bool]:
+        """The text of ``expression`` as a value of ST type ``want`` (None: as it is), and
+        whether that text needs parentheses to be an operand."""
+        have = self.number(expression)
+        if want is not None and have is not None and have != want:
+            constant = literal(expression, DECLARED[want])
+            if constant is not None:
+                return constant, constant.startswith("-")
+            text = self._text(expression)
+            return convert(text, have, want, expression.position), False
+        text = self._text(expression)
+        return text, isinstance(expression, ast.Binary | ast.Unary)
+
+    def _text(self, expression: ast.Expression) -> str:
         constant = literal(expression)
         if constant is not None and not isinstance(expression, ast.VectorLiteral):
             return constant
@@ -96,9 +182,14 @@ class Scope:
                 member = self.sensor(owner, name) if isinstance(owner, DeviceT) else None
                 return f"{self.compile(target)}.{member or self.field(name)}"
             case ast.Index(target=target, index=index):
-                return f"{self.compile(target)}[{self.compile(index)}]"
+                position = self.compile(index)
+                if self.number(index) == REAL:  # Python's int(): toward zero
+                    position = f"TRUNC({position})"
+                return f"{self.compile(target)}[{position}]"
             case ast.Call(function=ast.Name(name=function), arguments=arguments):
-                inner = ", ".join(self.compile(a.value) for a in arguments)
+                kinds = {self.number(a.value) for a in arguments}
+                want = REAL if function in FRAME_BUILDERS or REAL in kinds else None
+                inner = ", ".join(self._as(a.value, want)[0] for a in arguments)
                 return f"{FUNCTIONS.get(function, function)}({inner})"
             case ast.Unary(operator=operator, operand=operand):
                 text = "NOT " if operator == "!" else operator
@@ -106,17 +197,45 @@ class Scope:
             case ast.Binary(operator="*", left=left, right=right) if self.infer(left) == FRAME:
                 return f"FRAME_MUL({self.compile(left)}, {self.compile(right)})"
             case ast.Binary(operator=operator, left=left, right=right):
-                symbol = OPERATORS.get(operator, operator)
-                return f"{self._operand(left)} {symbol} {self._operand(right)}"
+                return self._binary(operator, left, right)
         raise ValueError(f"cannot compile {type(expression).__name__} to Structured Text")
 
-    def _operand(self, expression: ast.Expression) -> str:
-        text = self.compile(expression)
-        return f"({text})" if isinstance(expression, ast.Binary | ast.Unary) else text
+    def _binary(self, operator: str, left: ast.Expression, right: ast.Expression) -> str:
+        """Numbers of both types meet as REAL; ``/`` always divides REALs."""
+        kinds = {self.number(left), self.number(right)}
+        numeric = operator in ARITHMETIC + COMPARISONS and None not in kinds
+        want = REAL if numeric and (operator == "/" or REAL in kinds) else None
+        first, second = self._operand(left, want), self._operand(right, want)
+        if operator == "%":
+            return _modulo(first, second, want == REAL)
+        return f"{first} {OPERATORS.get(operator, operator)} {second}"
 
-    def assign(self, target: ast.Expression, value: ast.Expression) -> list[str]:
-        """ST statements for ``target = value``; a vector literal is assigned element-wise."""
+    def _operand(self, expression: ast.Expression, want: str | None = None) -> str:
+        text, loose = self._as(expression, want)
+        return f"({text})" if loose else text
+
+    def assign(
+        self, target: ast.Expression, value: ast.Expression, declared: Type | None = None
+    ) -> list[str]:
+        """ST statements for ``target = value`` (``declared``: the target's type when the
+        scope does not know it); a vector literal is assigned element-wise."""
+        declared = declared or self.infer(target)
         left = self.compile(target)
         if isinstance(value, ast.VectorLiteral):
-            return [f"{left}[{i}] := {self.compile(e)};" for i, e in enumerate(value.elements)]
-        return [f"{left} := {self.compile(value)};"]
+            element = _element(declared)
+            return [
+                f"{left}[{i}] := {self.compile(e, element)};" for i, e in enumerate(value.elements)
+            ]
+        return [f"{left} := {self.compile(value, declared)};"]
+
+
+def _modulo(left: str, right: str, real_operands: bool) -> str:
+    """Python's floored remainder from ST's truncated one: ``((a MOD b) + b) MOD b``. ST has
+    MOD for integers only; for REALs the truncated remainder is ``a - b * TRUNC(a / b)``."""
+
+    def truncated(a: str) -> str:
+        if real_operands:
+            return f"{a} - {right} * DINT_TO_REAL(TRUNC({a} / {right}))"
+        return f"{a} MOD {right}"
+
+    return truncated(f"({truncated(left)} + {right})")

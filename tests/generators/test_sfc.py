@@ -157,7 +157,7 @@ def test_names_of_different_kinds_never_meet(claims: list[tuple[str, int, str]])
 @pytest.mark.parametrize(
     ("body", "found"),
     [
-        ("choice C; A -> C go; C -> B [n > 0]; C -> A;", "go AND (NOT (go AND (n_1 > 0)))"),
+        ("choice C; A -> C go; C -> B [n > 0]; C -> A;", "go AND (NOT (go AND (n_1 > 0.0)))"),
         ("A -> B after(2 s); B -> A after(n * 1 s);", "REAL_TO_TIME(n_1 * 1.0)"),
         ("A -> B go; B -> A back;", "FROM A TO B"),
     ],
