@@ -25,6 +25,7 @@ from plc import (
     sfc_trace,
     streams,
 )
+from test_sfc_numbers import every_mix
 
 from lightrocks.generators.sfc_iec61131 import build_unit
 from lightrocks.languages.lightrocks.analysis import analysis
@@ -93,6 +94,12 @@ CONSTRUCTS = [
          "start,press,press,press,+150ms,press,go,quit"),
         ("regions of a statechart", "Junction", "press,+1100ms,press,go,close,stop,press,close"),
         ("regions of a statechart join", "Junction", "+1200ms,press,press,close"),
+        ("integer times length in a guard", "Hopper",
+         "open,add,add,take,open,add,add,add,take,take,quit"),
+        ("integer times duration in a time event", "Hopper",
+         "open,add,add,add,take,+250ms,take,open,add,take,+350ms,quit"),
+        ("integer division and remainder", "Hopper",
+         "open,add,add,add,take,+350ms,quit"),
     ]
 ] + [
     # Regions of a task: the arm snaps a terminal while the camera looks ahead. Only faults
@@ -114,20 +121,20 @@ def home() -> Path:
     return found
 
 
-def _unit(model: Path):
-    context = check([model], SEARCH)
+def _unit(model: Path, search: list[Path] = SEARCH):
+    context = check([model], search)
     result = analysis(context)
     top = next(c for c in result.models.components if c.loaded.path == model.resolve())
     return build_unit(top, result.typing)
 
 
-def _compile(home: Path, source: Path, model: Path) -> str:
+def _compile(home: Path, source: Path, model: Path, search: list[Path] = SEARCH) -> str:
     """Empty when MatIEC accepts ``source`` and gcc links its C; else what went wrong."""
     out = source.with_suffix("")
     compiled = iec2c(home, source, out)
     if compiled.returncode != 0:
         return f"iec2c: {compiled.stderr}{compiled.stdout}"
-    driver = driver_source(_unit(model), Scenario("link", model), max_cycles=1)
+    driver = driver_source(_unit(model, search), Scenario("link", model), max_cycles=1)
     built = gcc(home, out, driver, out / "program")
     return "" if built.returncode == 0 else f"gcc: {built.stderr}"
 
@@ -153,6 +160,21 @@ def test_every_generated_file_compiles_and_links(home: Path, tmp_path: Path, tal
         files=len(jobs),
     )
     assert linked == len(jobs) >= 16, [f for f in failures if f]
+
+
+@pytest.mark.slow
+def test_integers_meeting_reals_compile_and_link(home: Path, tmp_path: Path, tally) -> None:
+    model = every_mix(tmp_path / "models")
+    source = tmp_path / "Mix.st"
+    source.write_text(generate("sfc", [model], search=[tmp_path / "models"])["Mix.st"])
+    failure = _compile(home, source, model, [tmp_path / "models"])
+    tally(
+        "MatIEC accepted {accepted}/{files}, gcc compiled and linked {linked}/{files}",
+        accepted=int(not failure.startswith("iec2c")),
+        linked=int(not failure),
+        files=1,
+    )
+    assert not failure
 
 
 def _steps_alike(home: Path, out: Path, scenario: Scenario) -> bool:

@@ -1,0 +1,225 @@
+"""Integers (DINT) and Reals (REAL) in the SFC target: IEC 61131-3 converts neither into the
+other, so every place they meet gets an explicit conversion that computes what the Python
+runtime computes. MatIEC judges the same constructs in test_matiec.py (model Hopper)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from conftest import generate
+
+from lightrocks.workbench.generators import GenerationError
+
+DOMAIN = """package t;
+
+device Scale {
+  command weigh(Real factor = 1, Integer rounds = 2, Length span = 0 mm);
+  sensor Integer ticks;
+}
+
+<<scene="none">> cell Bench {
+  scale : Scale;
+}
+"""
+
+WEIGH = """package t;
+
+import t.Bench;
+
+<<action>> statechart Weigh {
+  parameters {
+    Integer rounds = 3;
+    Real factor = 2;
+  }
+
+  do / scale.weigh(factor = rounds, rounds = rounds, span = 0);
+
+  end condition settled [scale.ticks > factor * 0.5];
+}
+"""
+
+DOSE = """package t;
+
+<<skill>> statechart Dose {
+  parameters {
+    Real factor = 1;
+    Length reach = 0;
+  }
+  initial state A;
+  final state Z;
+  A -> Z go;
+}
+"""
+
+
+PARAMETERS = "Length x = 5 mm;\n    Real ratio = 0;\n    Damping6 v = [0, 0, 0, 0, 0, 0];"
+ASSIGNMENTS = [
+    ("x = count * 2 mm;", "x := DINT_TO_REAL(count) * 0.002;"),
+    ("x = 2 mm * count;", "x := 0.002 * DINT_TO_REAL(count);"),
+    ("x = count * 1 mm + x;", "x := (DINT_TO_REAL(count) * 0.001) + x;"),
+    ("x = x - count * 1 mm;", "x := x - (DINT_TO_REAL(count) * 0.001);"),
+    ("ratio = ratio + count;", "ratio := ratio + DINT_TO_REAL(count);"),
+    ("ratio = count;", "ratio := DINT_TO_REAL(count);"),
+    ("ratio = 2;", "ratio := 2.0;"),
+    ("ratio = -count;", "ratio := DINT_TO_REAL(-count);"),
+    ("ratio = -(count * 0.5);", "ratio := -(DINT_TO_REAL(count) * 0.5);"),
+    ("ratio = max(count, 0.5);", "ratio := MAX(DINT_TO_REAL(count), 0.5);"),
+    (
+        "ratio = min(count, 4) + abs(ratio);",
+        "ratio := DINT_TO_REAL(MIN(count, 4)) + ABS(ratio);",
+    ),
+    ("ratio = v[ratio] + v[count];", "ratio := v[TRUNC(ratio)] + v[count];"),
+    ("count = count * 2 + 1;", "count := (count * 2) + 1;"),
+]
+GUARDS = [
+    ("[count * 2 mm > x]", "(DINT_TO_REAL(count) * 0.002) > x"),
+    ("[count == ratio]", "DINT_TO_REAL(count) = ratio"),
+    ("[ratio > 0]", "ratio > 0.0"),
+    ("[count > 0]", "count > 0"),
+    ("[count <= 2.5]", "DINT_TO_REAL(count) <= 2.5"),
+]
+
+
+def mix_model(tmp_path: Path, parameters: str, entry: str = "", more: str = "") -> Path:
+    """A skill ``t.Mix`` with an Integer ``count`` (3) and the given declarations, its
+    entry statements and further states or transitions; the cell, an action and a skill it
+    may use lie beside it."""
+    package = tmp_path / "t"
+    package.mkdir(parents=True, exist_ok=True)
+    (package / "Bench.lrd").write_text(DOMAIN)
+    (package / "Weigh.lr").write_text(WEIGH)
+    (package / "Dose.lr").write_text(DOSE)
+    model = package / "Mix.lr"
+    model.write_text(
+        "package t;\n\n<<skill>> statechart Mix {\n"
+        f"  parameters {{\n    Integer count = 3;\n    {parameters}\n  }}\n"
+        f"  initial state A {{\n    entry / {{ {entry} }}\n  }}\n"
+        f"  state B;\n  final state Z;\n  A -> B go;\n  B -> Z stop;\n  {more}\n}}\n"
+    )
+    return model
+
+
+def every_mix(tmp_path: Path) -> Path:
+    """One model with every kind of meeting above, for MatIEC to judge."""
+    entry = " ".join(e for e, _ in ASSIGNMENTS)
+    entry += " ratio = count / 2; rest = count % 4; ratio = ratio % count;"
+    more = [f"B -> A {guard} back;" for guard, _ in GUARDS]
+    more += [
+        "B -> A after(count * 100 ms);",
+        '<<import="Dose">> state D(factor = count, reach = 0);',
+        '<<import="Weigh">> state W(rounds = count, factor = count);',
+        "A -> D next;",
+        "D -> W;",
+        "W -> A;",
+    ]
+    parameters = f"{PARAMETERS}\n    Integer rest = 0;"
+    return mix_model(tmp_path, parameters, entry, "\n  ".join(more))
+
+
+def _mix(tmp_path: Path, parameters: str, entry: str = "", more: str = "") -> str:
+    model = mix_model(tmp_path, parameters, entry, more)
+    return generate("sfc", [model], search=[tmp_path])["Mix.st"]
+
+
+@pytest.mark.parametrize(("entry", "found"), ASSIGNMENTS)
+def test_an_integer_that_meets_a_real_becomes_real(tmp_path, entry: str, found: str) -> None:
+    assert found in _mix(tmp_path, PARAMETERS, entry)
+
+
+def test_integer_division_is_true_division_as_at_run_time(tmp_path) -> None:
+    text = _mix(tmp_path, "Real ratio = 0;", "ratio = count / 2; ratio = 7 / 2;")
+    assert "ratio := DINT_TO_REAL(count) / 2.0;" in text
+    assert "ratio := 7.0 / 2.0;" in text
+
+
+def test_the_remainder_is_floored_as_at_run_time(tmp_path) -> None:
+    text = _mix(
+        tmp_path,
+        "Integer rest = 0;\n    Real ratio = 0;",
+        "rest = count % 4; ratio = ratio % count;",
+    )
+    assert "rest := (count MOD 4 + 4) MOD 4;" in text
+    truncated = "ratio - DINT_TO_REAL(count) * DINT_TO_REAL(TRUNC(ratio / DINT_TO_REAL(count)))"
+    assert f"({truncated} + DINT_TO_REAL(count)) - DINT_TO_REAL(count)" in text
+
+
+def test_floored_remainder_formula_matches_python() -> None:
+    """``((a MOD b) + b) MOD b`` with ST's truncated MOD is Python's ``%``."""
+
+    def st_mod(a: int, b: int) -> int:
+        return abs(a) % abs(b) * (1 if a >= 0 else -1)
+
+    for a in range(-9, 10):
+        for b in (-4, -3, -1, 1, 3, 4):
+            assert st_mod(st_mod(a, b) + b, b) == a % b, (a, b)
+
+
+@pytest.mark.parametrize(
+    ("guard", "found"),
+    GUARDS,
+)
+def test_guards_compare_integers_with_reals_as_real(tmp_path, guard: str, found: str) -> None:
+    text = _mix(tmp_path, "Length x = 5 mm;\n    Real ratio = 0;", more=f"B -> A {guard} back;")
+    assert found in text
+
+
+def test_a_time_event_of_an_integer_times_a_duration(tmp_path) -> None:
+    text = _mix(tmp_path, "Real ratio = 0;", more="B -> A after(count * 100 ms);")
+    assert "PT := REAL_TO_TIME(DINT_TO_REAL(count) * 0.1)" in text
+
+
+def test_defaults_are_written_as_their_declared_type(tmp_path) -> None:
+    text = _mix(
+        tmp_path,
+        "Real ratio = 2;\n    Length x = 0;\n    Integer whole = 4.0;\n"
+        "    Damping6 v = [1, 0.5, 0, 0, 0, 2];",
+    )
+    for declaration in (
+        "ratio : REAL := 2.0;",
+        "x : REAL := 0.0;",
+        "whole : DINT := 4;",
+        "count : DINT := 3;",
+        "v : Damping6 := [1.0, 0.5, 0.0, 0.0, 0.0, 2.0];",
+    ):
+        assert declaration in text
+
+
+def test_vector_literal_elements_take_the_element_type(tmp_path) -> None:
+    text = _mix(tmp_path, "Damping6 v = [0, 0, 0, 0, 0, 0];", "v = [count, 1, 0.5, 0, 0, 0];")
+    assert "v[0] := DINT_TO_REAL(count);" in text
+    assert "v[1] := 1.0;" in text
+    assert "v[2] := 0.5;" in text
+
+
+def test_arguments_take_the_declared_type(tmp_path) -> None:
+    more = '<<import="Dose">> state D(factor = count, reach = 0);\n  A -> D next;\n  D -> A;'
+    text = _mix(tmp_path, "Real ratio = 0;", more=more)
+    assert "execute := TRUE, factor := DINT_TO_REAL(count), reach := 0.0" in text
+
+
+def test_device_commands_take_the_declared_type(tmp_path) -> None:
+    more = '<<import="Weigh">> state W;\n  A -> W next;\n  W -> A;'
+    text = _mix(tmp_path, "Real ratio = 0;", more=more)
+    # command defaults, then the call of the inlined action
+    for declaration in ("weigh_factor : REAL := 1.0;", "weigh_rounds : DINT := 2;"):
+        assert declaration in text
+    assert "weigh_factor := DINT_TO_REAL(W_rounds), weigh_rounds := W_rounds" in text
+    assert "weigh_span := 0.0" in text
+    assert "W_factor : REAL := 2.0;" in text
+    assert "DINT_TO_REAL(scale_2.ticks) > (W_factor * 0.5)" in text
+
+
+@pytest.mark.parametrize(
+    ("parameters", "entry", "place"),
+    [
+        ("Real ratio = 0;", "count = count / 2;", "Mix.lr:9:23"),
+        ("Real ratio = 0;", "count = ratio;", "Mix.lr:9:23"),
+        ("Integer whole = 2.5;", "", "Mix.lr:6:21"),
+    ],
+)
+def test_a_real_where_an_integer_is_declared_is_refused(
+    tmp_path, parameters: str, entry: str, place: str
+) -> None:
+    with pytest.raises(GenerationError, match=rf"{place}: a Real value where an Integer"):
+        _mix(tmp_path, parameters, entry)
