@@ -15,6 +15,7 @@ DOMAIN = """package t;
 
 device Scale {
   command weigh(Real factor = 1, Integer rounds = 2, Length span = 0 mm);
+  command tally() returns Integer;
   sensor Integer ticks;
 }
 
@@ -36,6 +37,21 @@ import t.Bench;
   do / scale.weigh(factor = rounds, rounds = rounds, span = 0);
 
   end condition settled [scale.ticks > factor * 0.5];
+}
+"""
+
+TALLY = """package t;
+
+import t.Bench;
+
+<<action>> statechart Tally {
+  parameters {
+    Real total = 0;
+  }
+
+  do / total = scale.tally();
+
+  end condition counted [scale.ticks > 0];
 }
 """
 
@@ -90,6 +106,7 @@ def mix_model(tmp_path: Path, parameters: str, entry: str = "", more: str = "") 
     (package / "Bench.lrd").write_text(DOMAIN)
     (package / "Weigh.lr").write_text(WEIGH)
     (package / "Dose.lr").write_text(DOSE)
+    (package / "Tally.lr").write_text(TALLY)
     model = package / "Mix.lr"
     model.write_text(
         "package t;\n\n<<skill>> statechart Mix {\n"
@@ -110,8 +127,10 @@ def every_mix(tmp_path: Path) -> Path:
         '<<import="Dose">> state D(factor = count, reach = 0);',
         '<<import="Weigh">> state W(rounds = count, factor = count);',
         "A -> D next;",
+        '<<import="Tally">> state T;',
         "D -> W;",
-        "W -> A;",
+        "W -> T;",
+        "T -> A;",
     ]
     parameters = f"{PARAMETERS}\n    Integer rest = 0;"
     return mix_model(tmp_path, parameters, entry, "\n  ".join(more))
@@ -208,6 +227,12 @@ def test_device_commands_take_the_declared_type(tmp_path) -> None:
     assert "weigh_span := 0.0" in text
     assert "W_factor : REAL := 2.0;" in text
     assert "DINT_TO_REAL(scale_2.ticks) > (W_factor * 0.5)" in text
+
+
+def test_an_integer_a_command_returns_is_stored_as_real(tmp_path) -> None:
+    more = '<<import="Tally">> state T;\n  A -> T next;\n  T -> A;'
+    text = _mix(tmp_path, "Real ratio = 0;", more=more)
+    assert "T_1_total := DINT_TO_REAL(scale_2.tally_result);" in text
 
 
 @pytest.mark.parametrize(
