@@ -163,6 +163,19 @@ def test_a_push_that_jams_is_tried_again_then_the_terminal_is_kept_in_the_hand(
     assert tasks_in_order(result) == ["AssembleRail/PlugTerminal1"]
 
 
+def test_a_slow_click_is_pressed_home_instead_of_backed_off(tmp_path: Path) -> None:
+    """Seed 5032 at 2 mm / 2 deg sets the second terminal down on the lips so that it settles
+    over them while the fingers slip: the force falls from its peak without the click's sharp
+    drop and the push runs out of time. Backing off would pull at the latched terminal; the
+    skill presses it home and the assembly goes on."""
+    trace = tmp_path / "run.jsonl"
+    result = run_once(ASSEMBLE_RAIL, [], [], "mujoco", seed=5032, noise=NOISE, trace=trace)
+    assert all_latched(result), result
+    assert outcomes(trace, "AssembleRail/PlugTerminal2/PressOn/Push") == ["timeout"]
+    assert outcomes(trace, "AssembleRail/PlugTerminal2/PressOn/Press") == ["seated"]
+    assert outcomes(trace, "AssembleRail/PlugTerminal2/PressOn") == ["latched"]
+
+
 def test_reordering_the_rail_tasks_changes_only_the_sequence_model(tmp_path: Path) -> None:
     examples = tmp_path / "examples"
     shutil.copytree(EXAMPLES, examples)

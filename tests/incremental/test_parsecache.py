@@ -11,7 +11,7 @@ import pytest
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import parsecache
 from lightrocks.workbench.app import cli
-from lightrocks.workbench.app.parsestore import DiskStore, decode, encode
+from lightrocks.workbench.app.parsestore import DiskStore, encode, read
 from lightrocks.workbench.languages import language_for
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -31,7 +31,7 @@ def store(tmp_path: Path):
 @pytest.mark.parametrize("path", MODELS, ids=lambda p: p.name)
 def test_a_stored_unit_reads_back_with_its_positions(path: Path) -> None:
     unit = language_for(path.suffix).parse(path.read_text(encoding="utf-8"), str(path))
-    again = decode(json.loads(json.dumps(encode(unit))))
+    again = read(json.dumps(encode(unit)))
     assert again == unit
     assert encode(again) == encode(unit)  # positions take no part in equality
 
@@ -55,6 +55,11 @@ def test_a_syntax_problem_is_stored_too(store: DiskStore) -> None:
         '{"$": "Name"}',
         "not json",
         '{"$": "Name", "name": "x", "position": {"$": "Position", "file": 1}}',
+        '{"$": "Name", "name": "x", "position": {"$": "Position", "file": "A.lr", "line": 1, '
+        '"column": 1, "extra": 2}}',
+        '{"$": "Name", "name": "x", "position": {"$": "Position", "file": "A.lr", "line": 1, '
+        '"column": 1}}',
+        "[1, 2]",
     ],
 )
 def test_a_planted_or_corrupt_entry_is_parsed_again(store: DiskStore, planted: str) -> None:
@@ -63,8 +68,9 @@ def test_a_planted_or_corrupt_entry_is_parsed_again(store: DiskStore, planted: s
     key = parsecache._key(language, text, "Turnstile.lr")
     (store.folder / key[:2]).mkdir(parents=True)
     (store.folder / key[:2] / key).write_text(planted, encoding="utf-8")
+    assert store.get(key) is None
     assert parsecache.parse(language, text, "Turnstile.lr") == expected
-    assert decode(json.loads((store.folder / key[:2] / key).read_text())) == expected
+    assert read((store.folder / key[:2] / key).read_text()) == expected
 
 
 def test_the_key_covers_grammar_text_and_file(monkeypatch: pytest.MonkeyPatch) -> None:
