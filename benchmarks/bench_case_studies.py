@@ -119,8 +119,9 @@ class PartialRun(KeyboardInterrupt):
 
 
 def record(table: Path, seeds: range, summaries: list[PointSummary]) -> list[PointSummary]:
-    """Append the summaries to a CSV table and return every summary it holds, so that runs of
-    this script in parallel (say one per noise level) add up to one picture."""
+    """Append the summaries to a CSV table and return every summary it holds, the runs at
+    one case and level added up: runs of this script in parallel (say one per noise level,
+    or one per range of seeds) add up to one picture."""
     fields = ["case", "noise_m", "noise_rad", "first_seed", "runs", "successes"]
     new = not table.exists()
     with table.open("a", newline="", encoding="utf-8") as stream:
@@ -131,14 +132,14 @@ def record(table: Path, seeds: range, summaries: list[PointSummary]) -> list[Poi
             writer.writerow([s.point.params[0], *s.point.noise, seeds.start, s.runs, s.successes])
     with table.open(newline="", encoding="utf-8") as stream:
         rows = list(csv.DictReader(stream))
-    rows.sort(key=lambda row: (row["case"], float(row["noise_m"]), float(row["noise_rad"])))
+    totals: dict[tuple[str, float, float], tuple[int, int]] = {}
+    for row in rows:
+        key = (row["case"], float(row["noise_m"]), float(row["noise_rad"]))
+        runs, successes = totals.get(key, (0, 0))
+        totals[key] = (runs + int(row["runs"]), successes + int(row["successes"]))
     return [
-        PointSummary(
-            GridPoint((row["case"],), (float(row["noise_m"]), float(row["noise_rad"]))),
-            int(row["runs"]),
-            int(row["successes"]),
-        )
-        for row in rows
+        PointSummary(GridPoint((case,), (length, angle)), runs, successes)
+        for (case, length, angle), (runs, successes) in sorted(totals.items())
     ]
 
 
