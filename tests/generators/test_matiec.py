@@ -100,6 +100,13 @@ CONSTRUCTS = [
          "open,add,add,add,take,+250ms,take,open,add,take,+350ms,quit"),
         ("integer division and remainder", "Hopper",
          "open,add,add,add,take,+350ms,quit"),
+        ("an entering event is taken once", "Tally", "add,add,take,add,add,add,take"),
+        ("an event moving inside a composite is taken once", "Tally",
+         "fill,add,add,take,fill,add,add,add,take"),
+        ("an event entering through history is taken once", "Tally",
+         "keep,hold,add,add,take,quit"),
+        ("an event entering a region is taken once", "Tally",
+         "hold,add,take,hold,add,add,take"),
     ]
 ] + [
     # Regions of a task: the arm snaps a terminal while the camera looks ahead. Only faults
