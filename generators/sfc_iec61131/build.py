@@ -328,9 +328,11 @@ class Node:
 class Branch:
     """One way out of a step: its condition, then the statements, then where it goes.
 
-    A branch without target stays in its step (an internal transition); a branch with
-    ``following`` runs its statements in a step of its own and goes on by those branches
-    (a choice, whose guards read the effect of the statements)."""
+    A branch without target stays in its step (an internal transition); one on an event
+    (``taken_once``) does not fire in the scan that enters its step, since the transition
+    that entered it has taken that event. A branch with ``following`` runs its statements in
+    a step of its own and goes on by those branches (a choice, whose guards read the effect
+    of the statements)."""
 
     condition: list[str]
     statements: list[str]
@@ -338,6 +340,7 @@ class Branch:
     postcondition: str = ""
     violated: list[Branch] = field(default_factory=list)  # where a broken postcondition goes
     following: list[Branch] | None = None
+    taken_once: bool = False
 
 
 def _lineage(component: Component) -> Iterator[Component]:
@@ -693,6 +696,7 @@ class ComponentBuilder:
         taken: list[str] = []
         covered: list[set[str]] = []
         staying: list[str] = []
+        resting = ""
         for branch in branches:
             needs = {c for c in branch.condition if c and c != "TRUE"}
             if any(earlier <= needs for earlier in covered):
@@ -703,6 +707,9 @@ class ComponentBuilder:
             taken.append(condition)
             if branch.target is None:
                 if branch.statements:
+                    if branch.taken_once:
+                        resting = resting or self._resting(source)
+                        whole = _conjunction([condition, resting, *map(_negate, taken[:-1])])
                     indented = [f"  {line}" for line in branch.statements]
                     staying += [f"IF {whole} THEN", *indented, "END_IF;"]
                 continue
@@ -739,7 +746,17 @@ class ComponentBuilder:
                 self._branches(between, violated)
             else:
                 self._go(between, branch.target, "")
-        return staying
+        return staying + ([f"{resting} := TRUE;"] if resting else [])
+
+    def _resting(self, step: str) -> str:
+        """A flag that ``step`` was active in the scan before, cleared when it is left: an
+        SFC runs a step's actions in the scan that enters it, while the event input that
+        entered it is still set."""
+        flag = self.names.claim(f"{step}_resting")
+        comment = "active in the scan before: the event that entered it is not its own"
+        self.block.locals.append(Variable(flag, "BOOL", comment=comment))
+        self._body(step, "P0", [f"{flag} := FALSE;"])
+        return flag
 
     def _exit(self, outcome: str) -> str:
         """The step that raises ``done`` and ``outcome`` until ``execute`` falls."""
@@ -1049,7 +1066,8 @@ class ComponentBuilder:
                 guard = self._guard(transition.guard)
                 statements = self._statements(transition.action or ())
                 stimulus = self._stimulus(owner, transition)
-                branches.append(Branch([*stimulus, guard], statements, None))
+                once = transition.delay is None
+                branches.append(Branch([*stimulus, guard], statements, None, taken_once=once))
             if owner is None:
                 break
             outcomes = {*(owner.info.outcomes or ()), *BUILTIN_OUTCOMES}  # never events
