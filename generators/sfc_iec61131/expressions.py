@@ -16,7 +16,7 @@ from lightrocks.languages.domain.types import FRAME, NUMBER, DeviceT, QuantityT,
 from lightrocks.metamodel import ast
 from lightrocks.workbench.generators import GenerationError
 
-OPERATORS = {"&&": "AND", "||": "OR", "==": "=", "!=": "<>", "%": "MOD"}
+OPERATORS = {"&&": "AND", "||": "OR", "==": "=", "!=": "<>"}  # "%": see _modulo
 ARITHMETIC = ("+", "-", "*", "/", "%")
 COMPARISONS = ("==", "!=", "<", "<=", ">", ">=")
 FUNCTIONS = {

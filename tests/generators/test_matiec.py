@@ -198,36 +198,32 @@ def _steps_alike(home: Path, out: Path, scenario: Scenario) -> bool:
     return streams(sfc_trace(out / "run", unit), unit) == streams(expected, unit)
 
 
-@pytest.mark.slow
-def test_compiled_program_steps_like_python(home: Path, tmp_path: Path, tally) -> None:
+def _differing(home: Path, folder: Path, scenarios: list, tally, what: str) -> list[str]:
+    """The names of the scenarios whose compiled program steps unlike Python, run in
+    parallel; the count of those alike goes to the summary as ``what``."""
     with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
         alike = list(
             pool.map(
-                lambda i: _steps_alike(home, tmp_path / str(i), SCENARIOS[i]), range(len(SCENARIOS))
+                lambda i: _steps_alike(home, folder / str(i), scenarios[i]), range(len(scenarios))
             )
         )
-    differing = [s.name for s, same in zip(SCENARIOS, alike, strict=True) if not same]
+    differing = [s.name for s, same in zip(scenarios, alike, strict=True) if not same]
     tally(
-        "{alike}/{scenarios} scenarios step like Python on MatIEC",
-        alike=len(SCENARIOS) - len(differing),
-        scenarios=len(SCENARIOS),
+        "{alike}/{scenarios} " + what + " on MatIEC",
+        alike=len(scenarios) - len(differing),
+        scenarios=len(scenarios),
     )
+    return differing
+
+
+@pytest.mark.slow
+def test_compiled_program_steps_like_python(home: Path, tmp_path: Path, tally) -> None:
+    differing = _differing(home, tmp_path, SCENARIOS, tally, "scenarios step like Python")
     assert not differing, f"the compiled program steps differently in: {differing}"
 
 
 @pytest.mark.slow
 def test_statechart_constructs_step_like_python(home: Path, tmp_path: Path, tally) -> None:
-    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-        alike = list(
-            pool.map(
-                lambda i: _steps_alike(home, tmp_path / str(i), CONSTRUCTS[i]),
-                range(len(CONSTRUCTS)),
-            )
-        )
-    differing = [s.name for s, same in zip(CONSTRUCTS, alike, strict=True) if not same]
-    tally(
-        "{alike}/{scenarios} statechart-construct scenarios step like Python on MatIEC",
-        alike=len(CONSTRUCTS) - len(differing),
-        scenarios=len(CONSTRUCTS),
-    )
+    what = "statechart-construct scenarios step like Python"
+    differing = _differing(home, tmp_path, CONSTRUCTS, tally, what)
     assert not differing, f"the compiled program steps differently in: {differing}"
