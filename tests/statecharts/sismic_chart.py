@@ -21,6 +21,7 @@ from sismic.model import Statechart
 from lightrocks.metamodel import ast
 
 OPERATORS = {"&&": "and", "||": "or"}
+INSTANT = 0.125  # below the clock step of the differential runs (0.25 s)
 
 
 def to_sismic(chart: ast.Statechart) -> Statechart:
@@ -40,7 +41,13 @@ def _state(path: str, name: str, body: tuple[Any, ...] | None, final: bool = Fal
         state["type"] = "final"
     for action in (e for e in body or () if isinstance(e, ast.Action)):
         state[f"on {action.kind}"] = "\n".join(statement(s) for s in action.statements)
-    internal = [_internal(e) for e in body or () if isinstance(e, ast.InternalTransition)]
+    internal = [
+        _internal(path, e, number)
+        for number, e in enumerate(e for e in body or () if isinstance(e, ast.InternalTransition))
+    ]
+    arms = [t.pop("arm") for t in internal if "arm" in t]
+    if arms:
+        state["on entry"] = "\n".join([*arms, state.get("on entry", "")]).strip()
     if internal:
         state["transitions"] = internal
     regions = [e for e in body or () if isinstance(e, ast.Region)]
@@ -63,26 +70,53 @@ def _state(path: str, name: str, body: tuple[Any, ...] | None, final: bool = Fal
     outgoing: dict[str, list[dict]] = {}
     for transition in (e for e in body if isinstance(e, ast.Transition)):
         source = next((c for c in children if c.name == transition.source), None)
-        earlier = outgoing.setdefault(transition.source, [])
-        earlier.append(_transition(path, source, transition, earlier))
+        outgoing.setdefault(transition.source, []).append(_transition(path, source, transition))
     for child in state["states"]:
         child_name = child["name"].rpartition("/")[2]
-        child.setdefault("transitions", []).extend(outgoing.get(child_name, []))
+        transitions = child.get("transitions", []) + outgoing.get(child_name, [])
+        if transitions:
+            child["transitions"] = _prioritised(transitions)
     return state
 
 
-def _internal(transition: ast.InternalTransition) -> dict:
-    result: dict[str, Any] = {}
+def _internal(path: str, transition: ast.InternalTransition, number: int) -> dict:
+    result: dict[str, Any] = {"trigger": transition.stimulus}
     guards = [python(transition.guard)] if transition.guard is not None else []
+    actions = [statement(s) for s in transition.action or ()]
     if transition.stimulus == "after":
-        guards.insert(0, f"after({python(transition.stimulus_arguments[0])})")
+        armed = f"_armed_{path.replace('/', '_')}_{number}"
+        delay = python(transition.stimulus_arguments[0])
+        result["trigger"] = f"after({delay})"
+        result["arm"] = f"{armed} = True"
+        guards.insert(0, f"{armed} and {_due(delay)}")
+        actions.insert(0, f"{armed} = False")
     else:
         result["event"] = transition.stimulus
     if guards:
         result["guard"] = " and ".join(guards)
-    if transition.action:
-        result["action"] = "\n".join(statement(s) for s in transition.action)
+    if actions:
+        result["action"] = "\n".join(actions)
     return result
+
+
+def _due(delay: str) -> str:
+    """A time event falls due at one instant: sismic's ``after()`` guard stays true from
+    then on, so it is closed again before the next tick of the runs."""
+    return f"after({delay}) and not after({delay} + {INSTANT})"
+
+
+def _prioritised(transitions: list[dict]) -> list[dict]:
+    """The first declared of several transitions with the same trigger from one source
+    wins (internal ones declared first); sismic would report non-determinism, so each
+    transition's guard excludes the earlier ones."""
+    earlier: dict[str, list[str]] = {}
+    for transition in transitions:
+        before = earlier.setdefault(transition.pop("trigger"), [])
+        guard = transition.get("guard", "True")
+        if before:
+            transition["guard"] = " and ".join([guard, *(f"not ({g})" for g in before)])
+        before.append(guard)
+    return transitions
 
 
 def _outcomes(source: ast.State | None) -> list[str]:
@@ -111,26 +145,24 @@ def _reached(here: str, source: ast.State, outcomes: list[str]) -> str:
     return "(" + " and ".join(parts) + ")"
 
 
-def _transition(
-    path: str, source: ast.State | None, transition: ast.Transition, earlier: list[dict]
-) -> dict:
+def _transition(path: str, source: ast.State | None, transition: ast.Transition) -> dict:
     target = f"{path}/{transition.target}"
     if transition.target_history:
         target += f"/{transition.target_history}"
-    result: dict[str, Any] = {"target": target}
+    result: dict[str, Any] = {"target": target, "trigger": ""}
     guards = [python(transition.guard)] if transition.guard is not None else []
     outcomes = _outcomes(source)
     here = f"{path}/{transition.source}"
-    if source is None:  # a choice: the first branch that holds wins
-        guards += [f"not ({e['guard']})" for e in earlier if "guard" in e]
-    elif transition.stimulus == "after":
-        guards.insert(0, f"after({python(transition.stimulus_arguments[0])})")
+    if transition.stimulus == "after":
+        delay = python(transition.stimulus_arguments[0])
+        result["trigger"] = f"after({delay})"
+        guards.insert(0, _due(delay))
     elif outcomes and not transition.stimulus:
         guards.insert(0, _reached(here, source, outcomes))
     elif transition.stimulus in outcomes:
         guards.insert(0, _reached(here, source, [transition.stimulus]))
-    else:
-        result["event"] = transition.stimulus
+    elif transition.stimulus:  # an event; the branches of a choice have none
+        result["event"] = result["trigger"] = transition.stimulus
     if guards:
         result["guard"] = " and ".join(guards)
     if transition.action:
