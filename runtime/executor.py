@@ -405,7 +405,8 @@ class Executor:
             t.action(owner, s)
         if t.post is not None and not t.post(owner, s):
             return self._error(owner, "postcondition violated", t.location)
-        if t.target in owner.end_names:
+        if t.target in owner.end_names:  # ended like in a final state: nothing to remember
+            owner.last = None
             return (owner, t.target)
         target = owner.children[t.target]
         return self._enter(target, s, t.history) if enter else target

@@ -15,8 +15,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from sismic.interpreter import Interpreter
 from sismic.io.datadict import import_from_dict
-from sismic.model import Statechart
+from sismic.model import FinalState, MicroStep, Statechart
 
 from lightrocks.metamodel import ast
 
@@ -150,8 +151,10 @@ def _transition(path: str, source: ast.State | None, transition: ast.Transition)
     if transition.target_history:
         target += f"/{transition.target_history}"
     result: dict[str, Any] = {"target": target, "trigger": ""}
-    guards = [python(transition.guard)] if transition.guard is not None else []
     outcomes = _outcomes(source)
+    completes = bool(outcomes) and transition.stimulus in ("", *outcomes)
+    after_exit = _after_exit(source) if completes else {}
+    guards = [python(transition.guard, after_exit)] if transition.guard is not None else []
     here = f"{path}/{transition.source}"
     if transition.stimulus == "after":
         delay = python(transition.stimulus_arguments[0])
@@ -170,25 +173,59 @@ def _transition(path: str, source: ast.State | None, transition: ast.Transition)
     return result
 
 
+def _after_exit(source: ast.State) -> dict[str, str]:
+    """The parameters as the exit action of ``source`` leaves them, in terms of their values
+    before: LightRocks evaluates the guard of a completion transition once the completed
+    state is left (docs/language.md §15.1), sismic before it leaves the state."""
+    values: dict[str, str] = {}
+    for action in (e for e in source.body or () if isinstance(e, ast.Action)):
+        if action.kind == "exit":
+            for assignment in action.statements:
+                values[python(assignment.target)] = python(assignment.value, values)
+    return values
+
+
 def statement(node: ast.Statement) -> str:
     if isinstance(node, ast.Assignment):
         return f"{python(node.target)} = {python(node.value)}"
     raise ValueError(f"no sismic counterpart for {node!r}")
 
 
-def python(node: ast.Expression) -> str:
-    """The Python text sismic evaluates; only what the differential charts use."""
+def python(node: ast.Expression, values: dict[str, str] | None = None) -> str:
+    """The Python text sismic evaluates; only what the differential charts use. ``values``
+    replaces names by expressions."""
+    values = values or {}
     match node:
         case ast.Binary(operator=operator, left=left, right=right):
-            return f"({python(left)} {OPERATORS.get(operator, operator)} {python(right)})"
+            operator = OPERATORS.get(operator, operator)
+            return f"({python(left, values)} {operator} {python(right, values)})"
         case ast.Unary(operator="!", operand=operand):
-            return f"(not {python(operand)})"
+            return f"(not {python(operand, values)})"
         case ast.Unary(operator=operator, operand=operand):
-            return f"({operator}{python(operand)})"
+            return f"({operator}{python(operand, values)})"
         case ast.Quantity(value=value):  # in SI, as the generated code has it
             return repr(int(value)) if value == int(value) else repr(value)
         case ast.BooleanLiteral(value=value):
             return repr(value)
         case ast.Name(name=name):
-            return name
+            return values.get(name, name)
     raise ValueError(f"no sismic counterpart for {node!r}")
+
+
+class Reference(Interpreter):
+    """sismic's interpreter with LightRocks' history rule (docs/language.md §7.1): a
+    composite whose last active child was a final state has no memory there and is entered
+    at its initial state. sismic remembers the final state and would complete again."""
+
+    def _apply_step(self, step: MicroStep) -> MicroStep:
+        applied = super()._apply_step(step)
+        for history, remembered in self._memory.items():
+            if remembered is not None:
+                self._memory[history] = [self._forget_final(name) for name in remembered]
+        return applied
+
+    def _forget_final(self, name: str) -> str:
+        if not isinstance(self._statechart.state_for(name), FinalState):
+            return name
+        parent = self._statechart.parent_for(name)
+        return self._statechart.state_for(parent).initial

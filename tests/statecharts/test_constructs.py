@@ -51,3 +51,37 @@ def test_the_virtual_clock_only_runs_without_adapter(build) -> None:
     bound = build("Blink", BLINK)().start(DryRunAdapter())
     with pytest.raises(RuntimeError, match="adapter's clock"):
         bound.advance(1)
+
+
+RESUME = """package d;
+
+statechart Resume {
+  initial state Idle;
+  state Job {
+    end condition out;
+    initial state Load;
+    state Work;
+    history H;
+    Load -> Work next;
+    Work -> out bail;
+  }
+
+  Idle -> Job go;
+  Job -> Idle out;
+  Idle -> Job.H back;
+  Job -> Idle pause;
+}
+"""
+
+
+@pytest.mark.parametrize(
+    ("events", "resumed"),
+    [(["go", "next", "pause", "back"], "Work"), (["go", "next", "bail", "back"], "Load")],
+)
+def test_history_forgets_a_composite_left_through_an_end_condition(
+    build, events: list[str], resumed: str
+) -> None:
+    chart = build("Resume", RESUME)().start()
+    for event in events:
+        assert chart.send(event)
+    assert chart.active_configuration == ("Resume", "Job", resumed)

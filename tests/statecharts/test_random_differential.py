@@ -14,11 +14,10 @@ import random
 
 import pytest
 from sismic.clock import SimulatedClock
-from sismic.interpreter import Interpreter
 
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from statecharts.random_charts import TICK, VARIABLES, random_chart
-from statecharts.sismic_chart import to_sismic
+from statecharts.sismic_chart import Reference, to_sismic
 
 CHARTS = 40
 SWEEP = 400
@@ -47,7 +46,7 @@ def _ours(chart) -> Observation:
 
 
 def theirs(text: str, events: list[str]) -> list[Observation]:
-    interpreter = Interpreter(
+    interpreter = Reference(
         to_sismic(parse_statechart(text, "chart.lr").statechart), clock=SimulatedClock()
     )
     interpreter.execute()
@@ -62,7 +61,7 @@ def theirs(text: str, events: list[str]) -> list[Observation]:
     return seen
 
 
-def _theirs(interpreter: Interpreter) -> Observation:
+def _theirs(interpreter: Reference) -> Observation:
     values = tuple(interpreter.context[v] for v in VARIABLES)
     return tuple(sorted(interpreter.configuration)), values
 
