@@ -119,6 +119,7 @@ class Executor:
         tree = _states(top)
         self._reactions = {state: _reactions(state) for state in tree}
         self._timed = {state: _timed(state) for state in tree}
+        self._depth = {state: len(_owners(state)) for state in tree}
         self._invariants = any(state.INVARIANTS for state in tree)
         self._checks = self._invariants or adapter is not None  # adapter snapshots each step
         self._tracing = trace.enabled  # looked at again at the start of every step
@@ -535,11 +536,12 @@ class Executor:
             self._timers[(state, transition)] = self.time + transition.delay(owner, s)
 
     def _due(self, now: float) -> Timer | None:
-        """The pending time event with the earliest deadline not after ``now``."""
+        """The pending time event with the earliest deadline not after ``now``; of several at
+        one deadline the innermost state's first, as for an event, then in arming order."""
         if not self._timers:
             return None
         due = [(deadline, timer) for timer, deadline in self._timers.items() if deadline <= now]
-        return min(due, key=lambda item: item[0])[1] if due else None
+        return min(due, key=lambda item: (item[0], -self._depth[item[1][0]]))[1] if due else None
 
     def _fire(self, timer: Timer) -> Done:
         """A time event occurs once: taken when its guard holds, else dropped."""
@@ -824,13 +826,13 @@ def _reactions(state: State) -> dict[str, tuple[tuple[State, Transition], ...]]:
 
 
 def _timed(state: State) -> tuple[tuple[State, Transition], ...]:
-    """The time events armed on entering ``state``: those leaving it, then its own; each
-    with the state its delay belongs to."""
+    """The time events armed on entering ``state``: its own, then those leaving it (the order
+    in which they fire at one deadline); each with the state its delay belongs to."""
     parent = state.parent
     leaving = parent.transitions_from(state.name) if parent is not None else ()
     return tuple(
-        [(parent, t) for t in leaving if t.delay is not None]
-        + [(state, t) for t in state.INTERNAL if t.delay is not None]
+        [(state, t) for t in state.INTERNAL if t.delay is not None]
+        + [(parent, t) for t in leaving if t.delay is not None]
     )
 
 

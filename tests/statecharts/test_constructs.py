@@ -85,3 +85,35 @@ def test_history_forgets_a_composite_left_through_an_end_condition(
     for event in events:
         assert chart.send(event)
     assert chart.active_configuration == ("Resume", "Job", resumed)
+
+
+AT_ONCE = """package d;
+
+statechart AtOnce {
+  parameters {
+    Integer n = 0;
+  }
+
+  initial state Outer {
+    initial state Wait {
+      internal after(500 ms) / { n = n + 1; };
+    }
+    state Moved {
+      entry / { n = n + 10; }
+    }
+    Wait -> Moved [n == 1] after(500 ms);
+  }
+  state Next;
+
+  Outer -> Next [n == 11] after(500 ms);
+}
+"""
+
+
+def test_time_events_at_one_deadline_fire_inner_and_internal_first(build) -> None:
+    """The internal time event of ``Wait`` fires before the one leaving it, and both before
+    the one leaving ``Outer``: each later guard sees what the earlier actions wrote."""
+    chart = build("AtOnce", AT_ONCE)().start()
+    chart.advance(0.5)
+    assert chart.n == 11
+    assert chart.active_configuration == ("AtOnce", "Next")
