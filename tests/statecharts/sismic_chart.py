@@ -13,11 +13,12 @@ LightRocks orthogonal state is an eventless transition guarded by every region b
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import Any
 
 from sismic.interpreter import Interpreter
 from sismic.io.datadict import import_from_dict
-from sismic.model import FinalState, MicroStep, Statechart
+from sismic.model import FinalState, MicroStep, OrthogonalState, Statechart
 
 from lightrocks.metamodel import ast
 
@@ -213,9 +214,23 @@ def python(node: ast.Expression, values: dict[str, str] | None = None) -> str:
 
 
 class Reference(Interpreter):
-    """sismic's interpreter with LightRocks' history rule (docs/language.md §7.1): a
-    composite whose last active child was a final state has no memory there and is entered
-    at its initial state. sismic remembers the final state and would complete again."""
+    """sismic's interpreter with two rules of LightRocks (docs/language.md §7): a composite
+    whose last active child was a final state has no memory there and is entered at its
+    initial state (sismic remembers the final state and would complete again), and a
+    statechart of regions ends when every region rests in a final state (sismic has no
+    join; a state's join is an eventless transition, but the statechart has none)."""
+
+    def _create_stabilization_step(self, names: Iterable[str]) -> MicroStep | None:
+        root = self._statechart.root
+        regions = self._statechart.children_for(root) if root in names else []
+        leaves = [self._statechart.state_for(leaf) for leaf in self._statechart.leaf_for(names)]
+        joined = isinstance(self._statechart.state_for(root), OrthogonalState) and all(
+            isinstance(leaf, FinalState) for leaf in leaves
+        )
+        if regions and joined:
+            depth = self._statechart.depth_for
+            return MicroStep(exited_states=sorted(names, key=lambda n: (-depth(n), n)))
+        return super()._create_stabilization_step(names)
 
     def _apply_step(self, step: MicroStep) -> MicroStep:
         applied = super()._apply_step(step)
