@@ -221,14 +221,18 @@ class Reference(Interpreter):
     join; a state's join is an eventless transition, but the statechart has none)."""
 
     def _create_stabilization_step(self, names: Iterable[str]) -> MicroStep | None:
-        root = self._statechart.root
-        regions = self._statechart.children_for(root) if root in names else []
-        leaves = [self._statechart.state_for(leaf) for leaf in self._statechart.leaf_for(names)]
-        joined = isinstance(self._statechart.state_for(root), OrthogonalState) and all(
-            isinstance(leaf, FinalState) for leaf in leaves
-        )
-        if regions and joined:
-            depth = self._statechart.depth_for
+        chart, names = self._statechart, list(names)
+        root = chart.root
+        regions = chart.children_for(root) if root in names else []
+        resting = [
+            any(
+                isinstance(chart.state_for(c), FinalState) and c in names
+                for c in chart.children_for(r)
+            )
+            for r in regions
+        ]
+        if isinstance(chart.state_for(root), OrthogonalState) and resting and all(resting):
+            depth = chart.depth_for
             return MicroStep(exited_states=sorted(names, key=lambda n: (-depth(n), n)))
         return super()._create_stabilization_step(names)
 

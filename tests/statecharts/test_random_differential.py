@@ -19,7 +19,7 @@ from lightrocks.languages.lightrocks.syntax import parse_statechart
 from statecharts.random_charts import TICK, VARIABLES, random_chart
 from statecharts.sismic_chart import Reference, to_sismic
 
-CHARTS = 40
+CHARTS = 30
 SWEEP = 400
 SEQUENCES = 6
 LENGTH = 14
