@@ -161,6 +161,8 @@ def _transition(path: str, source: ast.State | None, transition: ast.Transition)
         delay = python(transition.stimulus_arguments[0])
         result["trigger"] = f"after({delay})"
         guards.insert(0, _due(delay))
+        if outcomes:  # LightRocks takes a completion in the step that completes the source
+            guards.insert(1, f"not {_reached(here, source, outcomes)}")
     elif outcomes and not transition.stimulus:
         guards.insert(0, _reached(here, source, outcomes))
     elif transition.stimulus in outcomes:
