@@ -67,6 +67,7 @@ BOOLEAN = Type("Boolean")
 STRING = Type("String")
 FRAME = Type("Frame")
 NUMBER = QuantityT("Real", ONE)
+INTEGER = QuantityT("Integer", ONE)
 LENGTH_T = QuantityT("Length", LENGTH)
 ANGLE_T = QuantityT("Angle", ANGLE)
 ANY_OBJECT = ObjectT("Object")
@@ -84,11 +85,21 @@ BUILTIN_FUNCTIONS = ("abs", "min", "max", "rotX", "rotY", "rotZ", "transl")
 
 
 def quantity_of(literal: ast.Quantity) -> Type:
+    """``3`` is an Integer; ``3.0``, ``0.5`` and ``1e3`` are Reals; ``3 mm`` a quantity."""
+    if literal.integral:
+        return INTEGER
     try:
         dimension = lookup(literal.unit).dimension
     except UnitError:
         return UNKNOWN
     return QuantityT(literal.unit or "Real", dimension)
+
+
+def common_number(left: QuantityT, right: QuantityT) -> QuantityT:
+    """The type of ``+ - * %``, ``min`` and ``max`` on two dimensionless numbers, as in Java
+    and in both targets: Integer for two Integers, Real when a Real takes part. (``/``
+    always divides as Real: Python's true division, REAL on the PLC.)"""
+    return INTEGER if left == INTEGER and right == INTEGER else NUMBER
 
 
 def compatible(expected: Type, actual: Type, literal_zero: bool = False) -> bool:
@@ -106,6 +117,15 @@ def compatible(expected: Type, actual: Type, literal_zero: bool = False) -> bool
     if isinstance(expected, StructT) and isinstance(actual, StructT):
         return expected.name == actual.name
     return expected == actual
+
+
+def narrows(expected: Type, actual: Type) -> bool:
+    """Whether a value of ``actual`` would lose its fraction where ``expected`` is declared:
+    a Real where an Integer is, also as a vector element. An Integer widens to a Real."""
+    if isinstance(expected, VectorT) and isinstance(actual, VectorT):
+        pairs = zip(expected.elements, actual.elements, strict=False)
+        return any(narrows(e, a) for e, a in pairs)
+    return expected == INTEGER and isinstance(actual, QuantityT) and actual != INTEGER
 
 
 def describe(t: Type) -> str:
