@@ -237,3 +237,14 @@ def test_the_cli_reports_it_with_exit_code_1_and_no_traceback(
     assert status == 1
     assert f"Mix.lr:{line}:{column}: error LR0308: assigned value" in out
     assert "Traceback" not in out + err
+
+
+def test_a_real_default_of_an_integer_command_parameter_is_lr0404(tmp_path: Path) -> None:
+    model_set(tmp_path)
+    domain = DOMAIN.replace("Integer rounds = 2,", "Integer rounds = @@2.5,")
+    _, (line, column) = write(tmp_path, "Bench.lrd", domain)
+    context = check([tmp_path / "t"], [tmp_path])
+    [diagnostic] = context.diagnostics.items
+    assert (diagnostic.code, Path(diagnostic.file).name) == ("LR0404", "Bench.lrd")
+    assert (diagnostic.line, diagnostic.column) == (line, column)
+    assert diagnostic.message == "'rounds' expects Integer, not a Real value"
