@@ -16,7 +16,7 @@ from textx import TextXError, generator
 from textx.registration import GeneratorParam
 
 from lightrocks.workbench import report
-from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import (
     GenerationError,
     GenerationRequest,
@@ -35,7 +35,7 @@ def _run(target: str, model: Any, output_path: str | None, options: dict[str, An
     file = Path(model._tx_filename).resolve()
     context = check([file], model_path(str(options.pop("path", ""))))
     if context.diagnostics.has_errors:
-        raise TextXError(report.text(context.diagnostics.items, all_cocos()))
+        raise TextXError(report.text(context.diagnostics.items))
     request = GenerationRequest(context, [file], {k: str(v) for k, v in options.items()})
     output = Path(output_path) if output_path else file.parent
     try:

@@ -1,4 +1,7 @@
-"""A check run: load the given models and what they import, then run every CoCo."""
+"""A check run: load the given models and what they import, then run every CoCo.
+
+A check of a workspace whose reads all still hold is answered by the findings cache
+(:mod:`lightrocks.workbench.checkcache`) instead of running again."""
 
 from __future__ import annotations
 
@@ -8,6 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from lightrocks.workbench import checkcache
 from lightrocks.workbench.cocos import CoCo
 from lightrocks.workbench.diagnostics import Diagnostics
 from lightrocks.workbench.extensions import language_extensions
@@ -50,7 +54,11 @@ def load(
     diagnostics = Diagnostics()
     roots = [*model_path, *(p for p in paths if p.is_dir())]
     workspace = Workspace(ModelPath(roots), diagnostics, texts, unchanged)
-    files = [f for p in paths for f in model_files(p, extensions())]
+    files = []
+    for path in paths:
+        found = model_files(path, extensions())
+        workspace.reads.trees[str(path)] = [str(file) for file in found]
+        files += found
     if only_given:
         workspace.targets = dict.fromkeys(file.resolve() for file in files)
     for file in files:
@@ -69,7 +77,15 @@ def check(
     only_given: bool = False,
     unchanged: Mapping[Path, Loaded] | None = None,
 ) -> CheckContext:
-    """Load and run every CoCo; all findings end up in ``context.diagnostics``."""
+    """Load and run every CoCo; all findings end up in ``context.diagnostics``.
+
+    The context of an earlier check with the same arguments is returned when everything
+    that check read is unchanged."""
+    paths, model_path, texts = list(paths), list(model_path), texts or {}
+    entry = checkcache.key(paths, model_path, only_given)
+    remembered = checkcache.recall(entry, texts)
+    if remembered is not None:
+        return remembered
     context = load(paths, model_path, texts, only_given, unchanged)
     gc.freeze()  # the loaded models live to the end: keep the collector from rescanning them
     try:
@@ -77,4 +93,8 @@ def check(
             context.diagnostics.extend(coco.run(context))
     finally:
         gc.unfreeze()
+    workspace = context.workspace
+    workspace.reads.roots = [str(root) for root in workspace.model_path.roots]
+    workspace.reads.extensions = list(extensions())
+    checkcache.remember(entry, workspace.reads, context, context.diagnostics.items, texts)
     return context

@@ -6,8 +6,10 @@ import difflib
 from collections.abc import Iterable
 from dataclasses import dataclass
 from enum import Enum
+from typing import TYPE_CHECKING
 
-from lightrocks.metamodel.ast import Position
+if TYPE_CHECKING:  # findings are read back from the disk cache without the metamodel
+    from lightrocks.metamodel.ast import Position
 
 
 class Severity(Enum):

@@ -26,7 +26,7 @@ def printable(text: str) -> str:
     return "".join(repr(c)[1:-1] if unicodedata.category(c) in _UNSAFE else c for c in text)
 
 
-def text(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+def text(diagnostics: Sequence[Diagnostic]) -> str:
     lines = [printable(str(d)) for d in diagnostics]
     errors = sum(d.severity is Severity.ERROR for d in diagnostics)
     warnings = sum(d.severity is Severity.WARNING for d in diagnostics)
@@ -34,7 +34,7 @@ def text(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
     return "\n".join(lines)
 
 
-def as_json(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+def as_json(diagnostics: Sequence[Diagnostic]) -> str:
     items = [
         {
             "file": d.file,
@@ -95,7 +95,7 @@ def sarif(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
     return json.dumps(document, indent=2)
 
 
-def github(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+def github(diagnostics: Sequence[Diagnostic]) -> str:
     return "\n".join(
         f"::{_GITHUB_LEVEL[d.severity]} file={_property(d.file)},line={d.line},col={d.column},"
         f"title={_property(d.code)}::{_data(d.message + (f' ({d.hint})' if d.hint else ''))}"
@@ -113,9 +113,19 @@ def _property(value: str) -> str:
     return _data(value).replace(":", "%3A").replace(",", "%2C")
 
 
-FORMATS: dict[str, Callable[[Sequence[Diagnostic], Sequence[CoCo]], str]] = {
+_PLAIN: dict[str, Callable[[Sequence[Diagnostic]], str]] = {
     "text": text,
     "json": as_json,
-    "sarif": sarif,
     "github": github,
 }
+FORMATS = (*_PLAIN, "sarif")
+
+
+def render(
+    form: str, diagnostics: Sequence[Diagnostic], cocos: Callable[[], Sequence[CoCo]]
+) -> str:
+    """The findings in one of :data:`FORMATS`. Only SARIF describes the rules it reports, so
+    only it asks ``cocos`` for them (loading every CoCo takes a while)."""
+    if form == "sarif":
+        return sarif(diagnostics, cocos())
+    return _PLAIN[form](diagnostics)

@@ -16,7 +16,7 @@ from typing import Any
 from textx import TextXSemanticError
 
 from lightrocks.workbench import report
-from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.check import check
 
 PATH_VARIABLE = "LIGHTROCKS_PATH"
 
@@ -46,4 +46,4 @@ def _run_cocos(model: Any, metamodel: Any) -> None:
     given = params.get("path", "") if params is not None else ""
     context = check([Path(file)], model_path(given))
     if context.diagnostics.has_errors:
-        raise TextXSemanticError(report.text(context.diagnostics.items, all_cocos()))
+        raise TextXSemanticError(report.text(context.diagnostics.items))

@@ -18,6 +18,7 @@ from lightrocks.workbench import parsecache
 from lightrocks.workbench.diagnostics import Diagnostics, did_you_mean
 from lightrocks.workbench.languages import Language, extensions, language_for
 from lightrocks.workbench.modelpath import ModelPath
+from lightrocks.workbench.reads import Reads, listing, raw
 
 IMPLICIT_PACKAGES = ("lightrocks",)
 
@@ -65,17 +66,20 @@ class Workspace:
         self._scopes: dict[Path, dict[str, Symbol]] = {}
         self.targets: dict[Path, None] | None = None  # the files CoCos report on; None: all
         self.uses: dict[Path, set[Path]] = {}  # files whose declarations a file's names reached
+        self.reads = Reads()  # what loading read from disk, for the findings cache
 
     # -- loading --------------------------------------------------------------------------
 
-    def load(self, path: Path, resolved: bool = False) -> Loaded | None:
+    def load(self, path: Path) -> Loaded | None:
         """Parse a file once; problems become diagnostics and the file yields ``None``."""
-        if not resolved:
-            path = path.resolve()
+        given, path = path, path.resolve()
+        if given != path:
+            self.reads.links[str(given)] = str(path)
         if path in self.files:
             return self.files[path]
         self.files[path] = None
         if path in self.unchanged:
+            self.reads.complete = False
             return self._add(self.unchanged[path])
         language = language_for(path.suffix)
         shown = shown_name(path)
@@ -103,13 +107,16 @@ class Workspace:
     def _read(self, path: Path, shown: str) -> str | None:
         where = Position(shown, 1, 1)
         if not path.is_file():  # a FIFO or device would block or never end
+            self.reads.file(path, None)
             self.diagnostics.error(where, "LR0004", "not a regular file")
             return None
         try:
-            data = self._bytes(path)
+            data = raw(path, self.texts)
         except OSError as error:
+            self.reads.file(path, None)
             self.diagnostics.error(where, "LR0004", f"cannot read file: {error.strerror}")
             return None
+        self.reads.file(path, data)
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError as error:
@@ -129,11 +136,6 @@ class Workspace:
             return None
         return text
 
-    def _bytes(self, path: Path) -> bytes:
-        if path in self.texts:
-            return self.texts[path].encode("utf-8", "surrogateescape")
-        return path.read_bytes()
-
     def _declare(self, qualified_name: str, node: Any, loaded: Loaded) -> None:
         existing = self.symbols.get(qualified_name)
         if existing is not None:
@@ -152,12 +154,21 @@ class Workspace:
         """Load every model file of a package (not its sub-packages) and return its symbols."""
         if package not in self._loaded_packages:
             self._loaded_packages.add(package)
-            for folder in self.model_path.package_folders(package):
-                folder = folder.resolve()
-                for path in sorted(folder.iterdir()):
-                    if path.suffix in extensions() and path.is_file():
-                        self.load(path.resolve() if path.is_symlink() else path, resolved=True)
+            for folder in self._package_folders(package):
+                for name in self._listing(folder):
+                    if not name.endswith("/"):
+                        self.load(folder / name)
         return self._packages.get(package, {})
+
+    def _package_folders(self, package: str) -> list[Path]:
+        folders = list(self.model_path.package_folders(package))
+        self.reads.packages[package] = [str(folder) for folder in folders]
+        return [folder.resolve() for folder in folders]
+
+    def _listing(self, folder: Path) -> list[str]:
+        entries = listing(folder, extensions())
+        self.reads.listings[str(folder)] = entries
+        return entries
 
     # -- resolution -----------------------------------------------------------------------
 
@@ -188,17 +199,17 @@ class Workspace:
             if not symbols:
                 parent = imported.name.rpartition(".")[0]
                 siblings = {
-                    f"{parent}.{child.name}" if parent else child.name
-                    for folder in self.model_path.package_folders(parent)
-                    for child in folder.iterdir()
-                    if child.is_dir()
+                    f"{parent}.{name[:-1]}" if parent else name[:-1]
+                    for folder in self._package_folders(parent)
+                    for name in self._listing(folder)
+                    if name.endswith("/")
                 }
-                self.diagnostics.error(
-                    imported.position,
-                    "LR0102",
-                    f"package '{imported.name}' not found",
-                    did_you_mean(imported.name, siblings),
-                )
+                if imported.name in siblings:  # its folder holds no declaration
+                    message, hint = f"package '{imported.name}' has no models", ""
+                else:
+                    message = f"package '{imported.name}' not found"
+                    hint = did_you_mean(imported.name, siblings)
+                self.diagnostics.error(imported.position, "LR0102", message, hint)
             return symbols
         symbol = self.lookup(imported.name)
         if symbol is None:

@@ -21,7 +21,7 @@ import pytest
 
 from lightrocks.workbench import report
 from lightrocks.workbench.app.loading import component_class, generated_package
-from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.check import check
 
 DEADLINE = 60.0
 """Seconds a run that should end at once may take before it counts as hanging (generous:
@@ -79,9 +79,7 @@ def build(tmp_path: Path) -> Callable[..., type]:
     def make(charts: dict[str, str], name: str) -> type:
         root = write_models(tmp_path / f"models{next(_counter)}", charts)
         context = check([root])
-        assert not context.diagnostics.has_errors, report.text(
-            context.diagnostics.items, all_cocos()
-        )
+        assert not context.diagnostics.has_errors, report.text(context.diagnostics.items)
         files = sorted((root / "t").glob("*.lr"))
         package = within(lambda: generated_package(context, files, tmp_path / "cache"))
         return component_class(package, f"t.{name}")

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app import cache
+from lightrocks.workbench.app import cache, cachedir
 from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
@@ -59,11 +59,11 @@ def the_entry(root: Path) -> Path:
 
 def test_cache_root_is_the_users_cache_folder(monkeypatch, tmp_path):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
-    assert cache.cache_root() == tmp_path / "xdg" / "lightrocks"
+    assert cachedir.cache_root() == tmp_path / "xdg" / "lightrocks"
     monkeypatch.delenv("XDG_CACHE_HOME")
     monkeypatch.setenv("HOME", str(tmp_path / "home"))
     monkeypatch.setenv("LOCALAPPDATA", str(tmp_path / "local"))
-    assert cache.cache_root().parent in {
+    assert cachedir.cache_root().parent in {
         tmp_path / "home" / ".cache",
         tmp_path / "home" / "Library" / "Caches",
         tmp_path / "local",

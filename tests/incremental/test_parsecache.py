@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.workbench import parsecache
-from lightrocks.workbench.app import cli
+from lightrocks.workbench import checkcache, parsecache
+from lightrocks.workbench.app import checkstore, cli
 from lightrocks.workbench.app.parsestore import DiskStore, encode, read
 from lightrocks.workbench.languages import language_for
 
@@ -91,10 +91,12 @@ def test_a_second_check_reads_every_file_from_the_store(
     shutil.copytree(EXAMPLES / "screwing", tmp_path / "models" / "screwing")
     shutil.copytree(EXAMPLES / "robots", tmp_path / "models" / "robots")
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    monkeypatch.setattr(checkstore.DiskStore, "get", lambda self, key: None)  # check again
     hits = []
     read = DiskStore.get
     monkeypatch.setattr(DiskStore, "get", lambda self, key: hits.append(read(self, key)))
     parsecache._memory.clear()
+    checkcache._memory.clear()
     first = cli.main(["check", str(tmp_path / "models")]), capsys.readouterr().out
     assert hits and not any(hits)
     monkeypatch.setattr(
@@ -102,7 +104,9 @@ def test_a_second_check_reads_every_file_from_the_store(
     )
     hits.clear()
     parsecache._memory.clear()
+    checkcache._memory.clear()
     second = cli.main(["check", str(tmp_path / "models")]), capsys.readouterr().out
     assert hits and all(hits)
     assert second == first
     parsecache.use_store(None)
+    checkcache.use_store(None)

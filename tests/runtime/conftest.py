@@ -9,7 +9,7 @@ import pytest
 
 from lightrocks.workbench import report
 from lightrocks.workbench.app.loading import component_class, generated_package
-from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.check import check
 
 DOMAIN = """package t;
 
@@ -59,9 +59,7 @@ def build(tmp_path: Path):
         for chart, text in charts.items():
             (root / "t" / f"{chart}.lr").write_text(text)
         context = check([root])
-        assert not context.diagnostics.has_errors, report.text(
-            context.diagnostics.items, all_cocos()
-        )
+        assert not context.diagnostics.has_errors, report.text(context.diagnostics.items)
         files = sorted((root / "t").glob("*.lr"))
         package = generated_package(context, files, tmp_path / "cache")
         return component_class(package, f"t.{name}")

@@ -10,7 +10,7 @@ import pytest
 from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.workbench import report
 from lightrocks.workbench.app.loading import component_class, generated_package
-from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.check import check
 
 DOMAIN = """package r;
 
@@ -154,7 +154,7 @@ def build(tmp_path: Path):
         for file, text in models.items():
             (tmp_path / "r" / file).write_text(text)
         context = check([tmp_path])
-        shown = report.text(context.diagnostics.items, all_cocos())
+        shown = report.text(context.diagnostics.items)
         assert not context.diagnostics.has_errors, shown
         model = tmp_path / "r" / f"{name}.lr"
         return component_class(generated_package(context, [model], tmp_path / "cache"), f"r.{name}")

@@ -9,7 +9,7 @@ import pytest
 
 from lightrocks.workbench import report
 from lightrocks.workbench.app.loading import component_class, generated_package
-from lightrocks.workbench.check import all_cocos, check
+from lightrocks.workbench.check import check
 
 _counter = itertools.count()
 
@@ -24,7 +24,7 @@ def build(tmp_path: Path):
         file = root / "d" / f"{name}.lr"
         file.write_text(text)
         context = check([root])
-        shown = report.text(context.diagnostics.items, all_cocos())
+        shown = report.text(context.diagnostics.items)
         assert not context.diagnostics.has_errors, shown
         package = generated_package(context, [file], tmp_path / "cache")
         return component_class(package, f"d.{name}")

@@ -26,20 +26,6 @@ from lightrocks.workbench.generators import GenerationError
 MANIFEST = "manifest.json"
 
 
-def cache_root() -> Path:
-    """``$XDG_CACHE_HOME/lightrocks``, else the platform's per-user cache folder."""
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    if xdg:
-        base = Path(xdg)
-    elif sys.platform == "darwin":
-        base = Path.home() / "Library" / "Caches"
-    elif os.name == "nt":
-        base = Path(os.environ.get("LOCALAPPDATA") or Path.home() / "AppData" / "Local")
-    else:
-        base = Path.home() / ".cache"
-    return base / "lightrocks"
-
-
 @functools.cache
 def generator_source(generator: str) -> str:
     """A digest of the generator's own code and templates: an editable install changes them

@@ -12,27 +12,9 @@ from importlib.util import find_spec
 from pathlib import Path
 from typing import Any
 
-from rich.console import Console
-
-from lightrocks.metamodel.ast import Position
-from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.workbench import parsecache, report
-from lightrocks.workbench.app.parsestore import DiskStore
-from lightrocks.workbench.check import all_cocos, check
-from lightrocks.workbench.depth import TOO_DEEP, deepest
-from lightrocks.workbench.diagnostics import Diagnostics, Severity
-from lightrocks.workbench.extensions import language_extensions
-from lightrocks.workbench.files import write_atomic, write_tree
-from lightrocks.workbench.generators import (
-    GenerationError,
-    GenerationRequest,
-    TemplateProblem,
-    load_generator,
-    run_generator,
-    write_all,
-)
-from lightrocks.workbench.languages import extensions, language_for, languages
-from lightrocks.workbench.modelpath import model_files
+from lightrocks.workbench import checkcache, report
+from lightrocks.workbench.app import checkstore
+from lightrocks.workbench.diagnostics import Severity
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
 
@@ -113,14 +95,19 @@ def _configure_check(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_check)
 def cmd_check(args: argparse.Namespace) -> int:
-    context = check(existing_paths(args.paths), existing_paths(args.path))
-    findings = context.diagnostics.items
-    output = report.FORMATS[args.format](findings, all_cocos())
+    paths, model_path = existing_paths(args.paths), existing_paths(args.path)
+    found = checkcache.stored(checkcache.key(paths, model_path, False))
+    if found is None:
+        from lightrocks.workbench.check import check
+
+        keep_parses_on_disk()
+        found = check(paths, model_path).diagnostics.items
+    output = report.render(args.format, found, _all_cocos)
     if output:
         print(output)
-    warned = any(d.severity is Severity.WARNING for d in findings)
-    failed = context.diagnostics.has_errors or (args.strict and warned)
-    return EXIT_FINDINGS if failed else EXIT_OK
+    errors = any(d.severity is Severity.ERROR for d in found)
+    warned = any(d.severity is Severity.WARNING for d in found)
+    return EXIT_FINDINGS if errors or (args.strict and warned) else EXIT_OK
 
 
 def _configure_fmt(sub: argparse._SubParsersAction) -> None:
@@ -133,6 +120,14 @@ def _configure_fmt(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_fmt)
 def cmd_fmt(args: argparse.Namespace) -> int:
+    from lightrocks.metamodel.ast import Position
+    from lightrocks.metamodel.grammar import SyntaxProblem
+    from lightrocks.workbench.depth import TOO_DEEP, deepest
+    from lightrocks.workbench.diagnostics import Diagnostics
+    from lightrocks.workbench.files import write_atomic
+    from lightrocks.workbench.languages import extensions, language_for
+    from lightrocks.workbench.modelpath import model_files
+
     files = [f for p in existing_paths(args.paths) for f in model_files(p, extensions())]
     diagnostics = Diagnostics()
     original: dict[Path, str] = {}
@@ -156,7 +151,7 @@ def cmd_fmt(args: argparse.Namespace) -> int:
         except (UnicodeDecodeError, ValueError):
             diagnostics.error(Position(str(file), 1, 1), "LR0002", "not a text file")
     if diagnostics.has_errors:
-        print(report.text(diagnostics.items, []))
+        print(report.text(diagnostics.items))
         return EXIT_FINDINGS
     changed = [f for f, text in formatted.items() if text != original[f]]
     if args.check:
@@ -187,6 +182,18 @@ def _configure_generate(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_generate)
 def cmd_generate(args: argparse.Namespace) -> int:
+    from lightrocks.workbench.check import check
+    from lightrocks.workbench.generators import (
+        GenerationError,
+        GenerationRequest,
+        TemplateProblem,
+        load_generator,
+        run_generator,
+        write_all,
+    )
+    from lightrocks.workbench.languages import extensions
+    from lightrocks.workbench.modelpath import model_files
+
     try:
         generator = load_generator(args.target)
     except GenerationError as error:
@@ -196,7 +203,7 @@ def cmd_generate(args: argparse.Namespace) -> int:
     paths = existing_paths(args.models)
     context = check(paths, existing_paths(args.path))
     if context.diagnostics.has_errors:
-        print(report.text(context.diagnostics.items, all_cocos()))
+        print(report.text(context.diagnostics.items))
         return EXIT_FINDINGS
     files = [f.resolve() for p in paths for f in model_files(p, extensions())]
     request = GenerationRequest(context, files, options, templates)
@@ -288,6 +295,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.run import run_component, run_header, success_outcome
     from lightrocks.workbench.app.script import read_script
     from lightrocks.workbench.app.seeds import run_seeds
+    from lightrocks.workbench.generators import GenerationError
 
     model = statechart_file(args.model)
     search_path = existing_paths(args.path)
@@ -400,6 +408,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     from lightrocks.workbench.app.errors import ModelError, RunError
     from lightrocks.workbench.app.loading import load_component
     from lightrocks.workbench.app.run import success_outcome
+    from lightrocks.workbench.files import write_tree
+    from lightrocks.workbench.generators import GenerationError
 
     missing = [m for m in ("distributed", "pyarrow", "matplotlib") if not find_spec(m)]
     if missing:
@@ -497,6 +507,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
 
     from lightrocks.workbench.app.monitor.traces import TraceError, header, read_trace, task_name
     from lightrocks.workbench.app.monitor.watch import replay_for
+    from lightrocks.workbench.generators import GenerationError
 
     trace = existing_paths([args.trace])[0]
     address = _monitor_address(args.monitor)
@@ -559,11 +570,15 @@ def _configure_list(sub: argparse._SubParsersAction) -> None:
 def cmd_list(args: argparse.Namespace) -> int:
     from importlib.metadata import entry_points
 
+    from lightrocks.workbench.extensions import language_extensions
+    from lightrocks.workbench.generators import load_generator
+    from lightrocks.workbench.languages import languages
+
     if args.what == "languages":
         rows = [(lang.name, " ".join(lang.extensions), lang.description) for lang in languages()]
         rows += [(e.name, f"extends {e.extends}", e.description) for e in language_extensions()]
     elif args.what == "cocos":
-        rows = [(c.code, c.severity.value, c.summary) for c in all_cocos()]
+        rows = [(c.code, c.severity.value, c.summary) for c in _all_cocos()]
     elif args.what == "generators":
         rows = [
             (e.name, e.value, load_generator(e.name).description)
@@ -599,26 +614,42 @@ def parser() -> argparse.ArgumentParser:
     return main_parser
 
 
+def _all_cocos() -> list[Any]:
+    from lightrocks.workbench.check import all_cocos
+
+    return all_cocos()
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    console = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
-    parsecache.use_store(DiskStore())  # unchanged files are not parsed again by the next run
+    checkcache.use_store(checkstore.DiskStore())  # an unchanged workspace is not checked again
+    if args.command != "check":  # check loads the parser only when its findings are not on disk
+        keep_parses_on_disk()
     try:
         return COMMANDS[args.command][1](args)
     except UsageError as error:
-        console.print(f"lightrocks: error: {report.printable(str(error))}", markup=False)
+        _complain(f"error: {error}")
         return EXIT_USAGE
     except KeyboardInterrupt:
-        console.print("lightrocks: interrupted")
+        _complain("interrupted")
         return 130
     except Exception as error:
         if os.environ.get("LIGHTROCKS_DEBUG"):
             raise
-        console.print(
-            f"lightrocks: internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)",
-            markup=False,
-        )
+        _complain(f"internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)")
         return EXIT_FINDINGS
+
+
+def keep_parses_on_disk() -> None:
+    """Parse results outlive the process: the next run does not parse an unchanged file."""
+    from lightrocks.workbench import parsecache
+    from lightrocks.workbench.app import parsestore
+
+    parsecache.use_store(parsestore.DiskStore())
+
+
+def _complain(message: str) -> None:
+    print(f"lightrocks: {report.printable(message)}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -21,11 +21,10 @@ from lightrocks.generators.python.names import identifier
 from lightrocks.metamodel import ast
 from lightrocks.workbench import report
 from lightrocks.workbench.app import cache
+from lightrocks.workbench.app.cachedir import cache_root
 from lightrocks.workbench.app.errors import ModelError, RunError
-from lightrocks.workbench.check import CheckContext, all_cocos, check
+from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.generators import GenerationRequest, run_generator
-
-cache_root = cache.cache_root
 
 
 def generator_inputs(context: CheckContext, files: list[Path]) -> list[tuple[str, bytes]]:
@@ -82,7 +81,7 @@ def load_component(model: Path, search_path: Sequence[Path]) -> type:
     """Check the model, generate it (once per content) and import the class of its chart."""
     context = check([model], list(search_path))
     if context.diagnostics.has_errors:
-        raise ModelError(report.text(context.diagnostics.items, all_cocos()))
+        raise ModelError(report.text(context.diagnostics.items))
     units = [u.unit for u in context.workspace.loaded_units() if u.path == model.resolve()]
     if not units or not isinstance(units[0], ast.StatechartUnit):
         raise RunError(f"{model} holds no statechart")

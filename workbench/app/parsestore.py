@@ -17,7 +17,7 @@ from typing import Any
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem, paused_gc
-from lightrocks.workbench.app.cache import cache_root
+from lightrocks.workbench.app.cachedir import cache_root
 
 CLASSES = {
     name: value
