@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import ANGLE, LENGTH, ONE, Dimension, UnitError, lookup
-from lightrocks.workbench.workspace import Loaded, Workspace
+from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Symbol, Workspace
 
 
 @dataclass(frozen=True)
@@ -142,13 +142,27 @@ class Types:
     def __init__(self, workspace: Workspace) -> None:
         self.workspace = workspace
         self._cache: dict[str, Type] = {}
+        self._named: dict[Dimension, QuantityT] | None = None
 
     def resolve(self, loaded: Loaded, name: str) -> Type | None:
         if name in BUILTIN_TYPES:
             return BUILTIN_TYPES[name]
         symbol = self.workspace.resolve(loaded, name)
-        if symbol is None:
-            return None
+        return None if symbol is None else self._type_of(symbol)
+
+    def quantity(self, dimension: Dimension) -> QuantityT:
+        """The value type of a computed quantity: named after the implicit library's quantity
+        type of that dimension (``Length`` for metres), else ``quantity``."""
+        if self._named is None:
+            self._named = {}
+            for package in IMPLICIT_PACKAGES:
+                for symbol in self.workspace.load_package(package).values():
+                    kind = self._type_of(symbol)
+                    if isinstance(kind, QuantityT):
+                        self._named.setdefault(kind.dimension, kind)
+        return self._named.get(dimension) or QuantityT("quantity", dimension)
+
+    def _type_of(self, symbol: Symbol) -> Type:
         if symbol.qualified_name not in self._cache:
             self._cache[symbol.qualified_name] = UNKNOWN  # guards recursive structures
             self._cache[symbol.qualified_name] = self._build(symbol.loaded, symbol.node)

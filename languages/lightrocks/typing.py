@@ -542,7 +542,7 @@ class Typing:
                 )
                 if dimension == ONE:
                     return NUMBER if operator == "/" else common_number(left, right)
-                return QuantityT("quantity", dimension)
+                return self.types.quantity(dimension)
             zero = _is_zero(binary.left) or _is_zero(binary.right)
             if left.dimension != right.dimension and not zero:
                 self.report(

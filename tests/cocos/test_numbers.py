@@ -144,7 +144,7 @@ RESULTS = [
     ("min(n, 0.5)", "Real"),
     ("max(r, m)", "Real"),
     ("n * 1 mm / (1 mm)", "Real"),
-    ("n * 2 mm", "quantity [m]"),
+    ("n * 2 mm", "Length [m]"),
     ("x + n * 2 mm", "Length [m]"),
     ("3 mm", "mm [m]"),
 ]
@@ -163,6 +163,17 @@ def test_every_mix_has_its_result_type(tmp_path: Path) -> None:
     written = [e for e, _ in RESULTS]
     found = [(e, describe(types[id(v)])) for e, v in zip(written, values, strict=True)]
     assert found == RESULTS
+
+
+def test_a_computed_quantity_is_named_after_the_library_type_of_its_dimension(
+    tmp_path: Path,
+) -> None:
+    model_set(tmp_path, parameters="Time t = x / 2 s; Force f = x * x;")
+    messages = [d.message for d in check([tmp_path / "t"], [tmp_path]).diagnostics.items]
+    assert messages == [
+        "default of 't': expected Time [s], found Velocity [m/s]",
+        "default of 'f': expected Force [m·kg/s^2], found quantity [m^2]",
+    ]
 
 
 # -- a Real where an Integer is declared ----------------------------------------------------
