@@ -44,6 +44,13 @@ class Quantity:
     text: str = field(default="", compare=False)
     position: Position = _position()
 
+    @property
+    def integral(self) -> bool:
+        """Written as a whole number without unit (``3``, not ``3.0``, ``1e3`` or ``3 mm``):
+        an Integer, as every target keeps it."""
+        whole = not any(c in self.text for c in ".eE") and float(self.value).is_integer()
+        return not self.unit and whole
+
 
 @dataclass(frozen=True)
 class BooleanLiteral:

@@ -67,6 +67,8 @@ class Reads:
     """The model path the package folders were found on."""
     extensions: list[str] = field(default_factory=list)
     """The suffixes of model files, which the listings were made with."""
+    links: dict[str, str] = field(default_factory=dict)
+    """A path as found (a symlink, or relative) -> the file it resolved to."""
     complete: bool = True
     """False once the check took a file as given instead of reading it."""
 
@@ -83,6 +85,8 @@ class Reads:
                 data = content(Path(name), texts)
                 if (None if data is None else digest(data)) != known:
                     return False
+            if any(str(Path(name).resolve()) != target for name, target in self.links.items()):
+                return False
             for name, found in self.trees.items():
                 if [str(f) for f in model_files(Path(name), extensions)] != found:
                     return False
@@ -105,6 +109,7 @@ class Reads:
             "listings": self.listings,
             "roots": self.roots,
             "extensions": self.extensions,
+            "links": self.links,
         }
 
     @classmethod
@@ -112,11 +117,15 @@ class Reads:
         """Reads stored by :meth:`to_json`; ``ValueError`` for anything else."""
         if not isinstance(data, dict) or set(data) != {*cls().to_json()}:
             raise ValueError("not a record of reads")
-        files = data["files"]
+        files, links = data["files"], data["links"]
         if not isinstance(files, dict) or not all(
             isinstance(k, str) and (v is None or isinstance(v, str)) for k, v in files.items()
         ):
             raise ValueError("bad file digests")
+        if not isinstance(links, dict) or not all(
+            isinstance(k, str) and isinstance(v, str) for k, v in links.items()
+        ):
+            raise ValueError("bad links")
         names = {"roots": data["roots"], "extensions": data["extensions"]}
         if not all(_strings(value) for value in names.values()):
             raise ValueError("bad roots or extensions")
@@ -126,7 +135,7 @@ class Reads:
                 isinstance(k, str) and _strings(v) for k, v in mapping.items()
             ):
                 raise ValueError("bad listing")
-        return cls(files, **lists, **names)
+        return cls(files, **lists, **names, links=links)
 
 
 def _strings(value: Any) -> bool:

@@ -70,10 +70,11 @@ class Workspace:
 
     # -- loading --------------------------------------------------------------------------
 
-    def load(self, path: Path, resolved: bool = False) -> Loaded | None:
+    def load(self, path: Path) -> Loaded | None:
         """Parse a file once; problems become diagnostics and the file yields ``None``."""
-        if not resolved:
-            path = path.resolve()
+        given, path = path, path.resolve()
+        if given != path:
+            self.reads.links[str(given)] = str(path)
         if path in self.files:
             return self.files[path]
         self.files[path] = None
@@ -155,9 +156,8 @@ class Workspace:
             self._loaded_packages.add(package)
             for folder in self._package_folders(package):
                 for name in self._listing(folder):
-                    path = folder / name
                     if not name.endswith("/"):
-                        self.load(path.resolve() if path.is_symlink() else path, resolved=True)
+                        self.load(folder / name)
         return self._packages.get(package, {})
 
     def _package_folders(self, package: str) -> list[Path]:

@@ -65,11 +65,9 @@ class Scope:
 
 def number(literal: ast.Quantity) -> str:
     """The SI value; integers stay integers when written as such (``3``, not ``3 mm``)."""
-    value = literal.value
-    plain = not literal.unit and not any(c in literal.text for c in ".eE")
-    if plain and float(value).is_integer():
-        return str(int(value))
-    return repr(float(value))
+    if literal.integral:
+        return str(int(literal.value))
+    return repr(float(literal.value))
 
 
 def expression(node: ast.Expression, scope: Scope) -> str:

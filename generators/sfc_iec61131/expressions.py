@@ -75,12 +75,6 @@ def number_type(declared: Type | None) -> str | None:
     return None
 
 
-def _integral(quantity: ast.Quantity) -> bool:
-    """Written as a whole number without unit: an int at run time, as in the Python target."""
-    plain = not quantity.unit and not any(c in quantity.text for c in ".eE")
-    return plain and float(quantity.value).is_integer()
-
-
 def convert(text: str, have: str | None, want: str | None, position: ast.Position) -> str:
     """``text``, a value of ST type ``have``, as one of ``want``: an Integer widens to REAL;
     a REAL has no place in a DINT (at run time it would keep its fraction)."""
@@ -99,7 +93,7 @@ def literal(expression: ast.Expression, declared: Type | None = None) -> str | N
     a number is written as the ST type of ``declared`` when given."""
     match expression:
         case ast.Quantity(value=value):
-            have = DINT if _integral(expression) else REAL
+            have = DINT if expression.integral else REAL
             want = number_type(declared) or have
             if want == DINT and float(value).is_integer():
                 return str(int(value))
@@ -142,7 +136,7 @@ class Scope:
         """The ST number type of ``expression`` as the compiled text computes it, or None."""
         match expression:
             case ast.Quantity():
-                return DINT if _integral(expression) else REAL
+                return DINT if expression.integral else REAL
             case ast.Unary(operator="-", operand=operand):
                 return self.number(operand)
             case ast.Binary(operator=operator, left=left, right=right) if operator in ARITHMETIC:

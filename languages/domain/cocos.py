@@ -12,6 +12,8 @@ from lightrocks.languages.domain.types import (
     VectorT,
     compatible,
     describe,
+    narrows,
+    quantity_of,
 )
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup
@@ -112,6 +114,10 @@ def command_defaults_fit(context: object) -> Iterator[Finding]:
                 actual = _literal_type(value)
                 if actual is not None and not _fits(declared, actual):
                     yield value.position, f"'{parameter.name}' expects {describe(declared)}", ""
+            default = _literal_type(parameter.default)
+            if default is not None and _fits(declared, default) and narrows(declared, default):
+                message = f"'{parameter.name}' expects {describe(declared)}, not a Real value"
+                yield parameter.default.position, message, ""
 
 
 @coco("LR0405", Severity.ERROR, "a command default lies in the command's own safe range")
@@ -139,10 +145,8 @@ def _typed(types: Types, loaded: Loaded, parameter: ast.CommandParameter) -> boo
 
 def _literal_type(value: ast.Expression | None) -> QuantityT | VectorT | None:
     if isinstance(value, ast.Quantity):
-        try:
-            return QuantityT(value.unit, lookup(value.unit).dimension)
-        except UnitError:
-            return None
+        kind = quantity_of(value)
+        return kind if isinstance(kind, QuantityT) else None
     if isinstance(value, ast.VectorLiteral):
         elements = tuple(_literal_type(e) for e in value.elements)
         if all(e is not None for e in elements):

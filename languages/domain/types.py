@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import ANGLE, LENGTH, ONE, Dimension, UnitError, lookup
-from lightrocks.workbench.workspace import Loaded, Workspace
+from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Symbol, Workspace
 
 
 @dataclass(frozen=True)
@@ -67,6 +67,7 @@ BOOLEAN = Type("Boolean")
 STRING = Type("String")
 FRAME = Type("Frame")
 NUMBER = QuantityT("Real", ONE)
+INTEGER = QuantityT("Integer", ONE)
 LENGTH_T = QuantityT("Length", LENGTH)
 ANGLE_T = QuantityT("Angle", ANGLE)
 ANY_OBJECT = ObjectT("Object")
@@ -84,11 +85,21 @@ BUILTIN_FUNCTIONS = ("abs", "min", "max", "rotX", "rotY", "rotZ", "transl")
 
 
 def quantity_of(literal: ast.Quantity) -> Type:
+    """``3`` is an Integer; ``3.0``, ``0.5`` and ``1e3`` are Reals; ``3 mm`` a quantity."""
+    if literal.integral:
+        return INTEGER
     try:
         dimension = lookup(literal.unit).dimension
     except UnitError:
         return UNKNOWN
     return QuantityT(literal.unit or "Real", dimension)
+
+
+def common_number(left: QuantityT, right: QuantityT) -> QuantityT:
+    """The type of ``+ - * %``, ``min`` and ``max`` on two dimensionless numbers, as in Java
+    and in both targets: Integer for two Integers, Real when a Real takes part. (``/``
+    always divides as Real: Python's true division, REAL on the PLC.)"""
+    return INTEGER if left == INTEGER and right == INTEGER else NUMBER
 
 
 def compatible(expected: Type, actual: Type, literal_zero: bool = False) -> bool:
@@ -108,6 +119,15 @@ def compatible(expected: Type, actual: Type, literal_zero: bool = False) -> bool
     return expected == actual
 
 
+def narrows(expected: Type, actual: Type) -> bool:
+    """Whether a value of ``actual`` would lose its fraction where ``expected`` is declared:
+    a Real where an Integer is, also as a vector element. An Integer widens to a Real."""
+    if isinstance(expected, VectorT) and isinstance(actual, VectorT):
+        pairs = zip(expected.elements, actual.elements, strict=False)
+        return any(narrows(e, a) for e, a in pairs)
+    return expected == INTEGER and isinstance(actual, QuantityT) and actual != INTEGER
+
+
 def describe(t: Type) -> str:
     if isinstance(t, QuantityT) and not t.dimension.dimensionless:
         return f"{t.name} [{t.dimension}]"
@@ -122,13 +142,27 @@ class Types:
     def __init__(self, workspace: Workspace) -> None:
         self.workspace = workspace
         self._cache: dict[str, Type] = {}
+        self._named: dict[Dimension, QuantityT] | None = None
 
     def resolve(self, loaded: Loaded, name: str) -> Type | None:
         if name in BUILTIN_TYPES:
             return BUILTIN_TYPES[name]
         symbol = self.workspace.resolve(loaded, name)
-        if symbol is None:
-            return None
+        return None if symbol is None else self._type_of(symbol)
+
+    def quantity(self, dimension: Dimension) -> QuantityT:
+        """The value type of a computed quantity: named after the implicit library's quantity
+        type of that dimension (``Length`` for metres), else ``quantity``."""
+        if self._named is None:
+            self._named = {}
+            for package in IMPLICIT_PACKAGES:
+                for symbol in self.workspace.load_package(package).values():
+                    kind = self._type_of(symbol)
+                    if isinstance(kind, QuantityT):
+                        self._named.setdefault(kind.dimension, kind)
+        return self._named.get(dimension) or QuantityT("quantity", dimension)
+
+    def _type_of(self, symbol: Symbol) -> Type:
         if symbol.qualified_name not in self._cache:
             self._cache[symbol.qualified_name] = UNKNOWN  # guards recursive structures
             self._cache[symbol.qualified_name] = self._build(symbol.loaded, symbol.node)

@@ -53,6 +53,7 @@ dimension_mismatch = _typing("LR0304", "unit dimensions agree")
 unsafe_value = _typing("LR0305", "values lie in the safe ranges the device declares")
 not_assignable = _typing("LR0306", "only environment attributes and parameters are assigned")
 command_placement = _typing("LR0307", "device commands are called in do actions only")
+narrowing = _typing("LR0308", "no Real value where an Integer is declared")
 
 
 @coco("LR0101", Severity.ERROR, "names are unique per scope")
@@ -668,4 +669,5 @@ COCOS = (
     unsafe_value,
     not_assignable,
     command_placement,
+    narrowing,
 )

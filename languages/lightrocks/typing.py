@@ -21,6 +21,7 @@ from lightrocks.languages.domain.types import (
     FRAME,
     FRAME_MEMBERS,
     LENGTH_T,
+    NUMBER,
     STRING,
     UNKNOWN,
     CommandT,
@@ -32,8 +33,10 @@ from lightrocks.languages.domain.types import (
     Type,
     Types,
     VectorT,
+    common_number,
     compatible,
     describe,
+    narrows,
     quantity_of,
 )
 from lightrocks.languages.lightrocks.model import Component, ModelSet, Region
@@ -213,6 +216,8 @@ class Typing:
                 )
             elif not compatible(target, returns[1]):
                 self.mismatch(statement.position, target, returns[1], "returned value")
+            elif narrows(target, returns[1]):
+                self.narrowing(statement.position, target, returns[1], "returned value")
 
     def assignable(self, target: ast.Expression, env: dict[str, Type]) -> Type:
         """The type of an assignment target; sensors and devices cannot be assigned."""
@@ -349,12 +354,23 @@ class Typing:
         actual = self.infer(expression, env)
         if not compatible(expected, actual, _is_zero(expression)):
             self.mismatch(expression.position, expected, actual, what)
+        elif narrows(expected, actual):
+            self.narrowing(expression.position, expected, actual, what)
 
     def mismatch(self, position: ast.Position, expected: Type, actual: Type, what: str) -> None:
         both_quantities = isinstance(expected, QuantityT) and isinstance(actual, QuantityT)
         code = "LR0304" if both_quantities or _vectors_of_quantities(expected, actual) else "LR0302"
         self.report(
             code, position, f"{what}: expected {describe(expected)}, found {describe(actual)}"
+        )
+
+    def narrowing(self, position: ast.Position, expected: Type, actual: Type, what: str) -> None:
+        self.report(
+            "LR0308",
+            position,
+            f"{what}: expected {describe(expected)}, found {describe(actual)}: "
+            "a Real value does not fit an Integer",
+            "declare the target Real, or compute the value from Integers with + - * %",
         )
 
     def infer(
@@ -488,8 +504,12 @@ class Typing:
             for argument, actual in zip(call.arguments, arguments, strict=True):
                 self._expect_type(argument.value, actual, LENGTH_T, "'transl'")
             return FRAME
-        if name in ("min", "max") and not compatible(arguments[0], arguments[1]):
-            self.mismatch(call.position, arguments[0], arguments[1], f"'{name}'")
+        if name in ("min", "max"):
+            left, right = arguments
+            if not compatible(left, right):
+                self.mismatch(call.position, left, right, f"'{name}'")
+            elif _dimensionless(left) and _dimensionless(right):
+                return common_number(left, right)
         return arguments[0]
 
     def _expect_type(self, node: ast.Expression, actual: Type, expected: Type, what: str) -> None:
@@ -520,7 +540,9 @@ class Typing:
                     if operator == "*"
                     else left.dimension / right.dimension
                 )
-                return QuantityT("Real" if dimension == ONE else "quantity", dimension)
+                if dimension == ONE:
+                    return NUMBER if operator == "/" else common_number(left, right)
+                return self.types.quantity(dimension)
             zero = _is_zero(binary.left) or _is_zero(binary.right)
             if left.dimension != right.dimension and not zero:
                 self.report(
@@ -530,6 +552,8 @@ class Typing:
                 )
             if operator in ("==", "!=", "<", "<=", ">", ">="):
                 return BOOLEAN
+            if _dimensionless(left) and _dimensionless(right):
+                return common_number(left, right)
             return left if not left.dimension.dimensionless else right
         if operator in ("==", "!="):
             if not compatible(left, right):
@@ -549,6 +573,10 @@ def _file(loaded: Loaded) -> str:
 
 def _is_zero(expression: ast.Expression | None) -> bool:
     return isinstance(expression, ast.Quantity) and expression.value == 0 and not expression.unit
+
+
+def _dimensionless(t: Type) -> bool:
+    return isinstance(t, QuantityT) and t.dimension.dimensionless
 
 
 def _vectors_of_quantities(expected: Type, actual: Type) -> bool:

@@ -630,6 +630,25 @@ CASES: list[Case] = [
         },
         message="device command 'move' can only be called in a do action",
     ),
+    Case(
+        "LR0308",
+        ok={
+            "actions/Move.lr": replace(
+                replace(MOVE, "  parameters {", "  parameters { Integer tries = 2; Real r = 1;"),
+                "  end condition done",
+                "  exit / { r = tries / 2; tries = tries * 2 + 1; }\n  end condition done",
+            )
+        },
+        bad={
+            "actions/Move.lr": replace(
+                replace(MOVE, "  parameters {", "  parameters { Integer tries = 2;"),
+                "  end condition done",
+                "  exit / { tries = @@tries / 2; }\n  end condition done",
+            )
+        },
+        message="assigned value: expected Integer, found Real",
+        hint="declare the target Real",
+    ),
     # -- domain interfaces -------------------------------------------------------------------
     Case(
         "LR0401",

@@ -24,7 +24,7 @@ statechart ExitDivides {
   }
 
   initial state A {
-    exit / { n = 1 / n; }
+    exit / { n = 1 % n; }
   }
   final state B;
 
@@ -117,10 +117,10 @@ def test_elemental_exit_dividing_by_a_zero_sensor_ends_the_run(build):
             "entry",
             SKILL.replace(
                 '<<import="Move">> state M;',
-                '<<import="Move">> state M {\n    entry / { n = 1 / n; }\n  }',
+                '<<import="Move">> state M {\n    entry / { n = 1 % n; }\n  }',
             ),
         ),
-        ("transition action", SKILL.replace("go -> M;", "go -> M / { n = 1 / n; };")),
+        ("transition action", SKILL.replace("go -> M;", "go -> M / { n = 1 % n; };")),
         ("binding", SKILL.replace("state M;", "state M(q = 1 / n);")),
         (
             "end-condition watchdog",
@@ -214,7 +214,7 @@ def test_failing_hold_is_reported_and_the_run_still_ends(build):
 
 RECOVER = SKILL.replace(
     '<<import="Move">> state M;',
-    '<<import="Move">> state M;\n  state R {\n    entry / { n = 1 / n; }\n  }',
+    '<<import="Move">> state M;\n  state R {\n    entry / { n = 1 % n; }\n  }',
 ).replace("M -> done reached;", "M -> done reached;\n  M -> R error;")
 
 

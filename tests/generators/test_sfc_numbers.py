@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 from conftest import generate
 
-from lightrocks.workbench.generators import GenerationError
+from lightrocks.workbench.check import check
+from lightrocks.workbench.generators import GenerationError, GenerationRequest, load_generator
 
 DOMAIN = """package t;
 
@@ -191,13 +192,13 @@ def test_a_time_event_of_an_integer_times_a_duration(tmp_path) -> None:
 def test_defaults_are_written_as_their_declared_type(tmp_path) -> None:
     text = _mix(
         tmp_path,
-        "Real ratio = 2;\n    Length x = 0;\n    Integer whole = 4.0;\n"
+        "Real ratio = 2;\n    Length x = 0;\n    Integer whole = -4;\n"
         "    Damping6 v = [1, 0.5, 0, 0, 0, 2];",
     )
     for declaration in (
         "ratio : REAL := 2.0;",
         "x : REAL := 0.0;",
-        "whole : DINT := 4;",
+        "whole : DINT := -4;",
         "count : DINT := 3;",
         "v : Damping6 := [1.0, 0.5, 0.0, 0.0, 0.0, 2.0];",
     ):
@@ -243,8 +244,16 @@ def test_an_integer_a_command_returns_is_stored_as_real(tmp_path) -> None:
         ("Integer whole = 2.5;", "", "Mix.lr:6:21"),
     ],
 )
-def test_a_real_where_an_integer_is_declared_is_refused(
+def test_a_real_where_an_integer_is_declared_is_reported_where_the_target_refuses_it(
     tmp_path, parameters: str, entry: str, place: str
 ) -> None:
+    """The checker reports what the SFC target refuses, at the same place."""
+    model = mix_model(tmp_path, parameters, entry)
+    context = check([model], [tmp_path])
+    found = [
+        (d.code, f"{Path(d.file).name}:{d.line}:{d.column}") for d in context.diagnostics.items
+    ]
+    assert found == [("LR0308", place)]
+    request = GenerationRequest(context, [model.resolve()])
     with pytest.raises(GenerationError, match=rf"{place}: a Real value where an Integer"):
-        _mix(tmp_path, parameters, entry)
+        load_generator("sfc").generate(request)

@@ -115,6 +115,21 @@ def test_a_change_of_anything_read_is_checked_again(models: Path, change: str) -
     assert after != before
 
 
+def test_a_retargeted_symlink_is_checked_again(models: Path, tmp_path: Path) -> None:
+    for copy in ("one", "two"):
+        (tmp_path / copy).mkdir()
+        (tmp_path / copy / "Move.lr").write_text(MOVE.replace("arm.done", "arm.gone"))
+    link = models / "actions/Move.lr"
+    link.unlink()
+    link.symlink_to(tmp_path / "one/Move.lr")
+    assert all("one" in d.file for d in check([models]).diagnostics.items if "Move" in d.file)
+    link.unlink()
+    link.symlink_to(tmp_path / "two/Move.lr")
+    after = check([models]).diagnostics.items
+    assert any("two" in d.file for d in after)
+    assert after == fresh(models)
+
+
 def test_editor_buffers_are_read_like_files(models: Path) -> None:
     move = (models / "actions/Move.lr").resolve()
     clean = check([models]).diagnostics.items

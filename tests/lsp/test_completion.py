@@ -107,7 +107,7 @@ def test_hover_types_the_innermost_expression_under_the_cursor(tmp_path: Path) -
         return file.expression_at(lsp.Position(line, column))[1]
 
     assert hovered("+ 1 mm") == "gap + 1 mm : Length [m]"
-    assert hovered("* 2") == "(gap + 1 mm) * 2 : quantity [m]"
+    assert hovered("* 2") == "(gap + 1 mm) * 2 : Length [m]"
     assert hovered("> 5") == "(gap + 1 mm) * 2 > 5 mm : Boolean"
     assert hovered("&&").endswith("&& push < 4 N : Boolean")
     assert hovered("< 4") == "push < 4 N : Boolean"

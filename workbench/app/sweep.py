@@ -93,7 +93,10 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
     processes (one per core by default, one thread each: a simulation is single-threaded).
 
     Ctrl-C is held back while the cluster starts: a cluster interrupted half-made cannot be
-    closed cleanly. It takes effect as soon as the cluster is there to be closed.
+    closed cleanly. It takes effect as soon as the cluster is there to be closed. The local
+    cluster logs only what is critical: a failed run reaches the sweep through its future,
+    and a worker that loses the scheduler while the cluster closes (after Ctrl-C) would
+    otherwise print tracebacks of that race between the progress line and the summary.
     """
     from distributed import Client, LocalCluster
 
@@ -108,7 +111,7 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
                     threads_per_worker=1,
                     processes=True,
                     dashboard_address=":0",  # any free port: several clusters may run at once
-                    silence_logs=logging.ERROR,
+                    silence_logs=logging.CRITICAL,
                 )
                 stack.enter_context(cluster)
                 client = stack.enter_context(Client(cluster))
