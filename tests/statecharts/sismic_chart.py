@@ -6,7 +6,9 @@ eventless transition guarded by ``active(<final state>)``: sismic has no complet
 and its eventless transitions fire as soon as the final state is active, which is the
 moment a LightRocks composite completes. End conditions become final states, a choice a
 state left by eventless transitions whose guards exclude the earlier branches, ``after(d)``
-sismic's ``after(seconds)`` guard, and an internal transition a transition without target.
+sismic's ``after(seconds)`` guard with a flag that makes it occur once, and an internal
+transition a transition without target. Later transitions with the trigger of an earlier
+one from the same source exclude it in their guards: the first declared wins.
 Regions become sismic's parallel states, one compound state per region; the join of a
 LightRocks orthogonal state is an eventless transition guarded by every region being final.
 """
@@ -23,7 +25,6 @@ from sismic.model import FinalState, MicroStep, OrthogonalState, Statechart
 from lightrocks.metamodel import ast
 
 OPERATORS = {"&&": "and", "||": "or"}
-INSTANT = 0.125  # below the clock step of the differential runs (0.25 s)
 
 
 def to_sismic(chart: ast.Statechart) -> Statechart:
@@ -43,13 +44,7 @@ def _state(path: str, name: str, body: tuple[Any, ...] | None, final: bool = Fal
         state["type"] = "final"
     for action in (e for e in body or () if isinstance(e, ast.Action)):
         state[f"on {action.kind}"] = "\n".join(statement(s) for s in action.statements)
-    internal = [
-        _internal(path, e, number)
-        for number, e in enumerate(e for e in body or () if isinstance(e, ast.InternalTransition))
-    ]
-    arms = [t.pop("arm") for t in internal if "arm" in t]
-    if arms:
-        state["on entry"] = "\n".join([*arms, state.get("on entry", "")]).strip()
+    internal = [_internal(e) for e in body or () if isinstance(e, ast.InternalTransition)]
     if internal:
         state["transitions"] = internal
     regions = [e for e in body or () if isinstance(e, ast.Region)]
@@ -77,34 +72,42 @@ def _state(path: str, name: str, body: tuple[Any, ...] | None, final: bool = Fal
         child_name = child["name"].rpartition("/")[2]
         transitions = child.get("transitions", []) + outgoing.get(child_name, [])
         if transitions:
-            child["transitions"] = _prioritised(transitions)
+            child["transitions"] = _prioritised(_timed(child, transitions))
     return state
 
 
-def _internal(path: str, transition: ast.InternalTransition, number: int) -> dict:
+def _internal(transition: ast.InternalTransition) -> dict:
     result: dict[str, Any] = {"trigger": transition.stimulus}
     guards = [python(transition.guard)] if transition.guard is not None else []
-    actions = [statement(s) for s in transition.action or ()]
     if transition.stimulus == "after":
-        armed = f"_armed_{path.replace('/', '_')}_{number}"
-        delay = python(transition.stimulus_arguments[0])
-        result["trigger"] = f"after({delay})"
-        result["arm"] = f"{armed} = True"
-        guards.insert(0, f"{armed} and {_due(delay)}")
-        actions.insert(0, f"{armed} = False")
+        result["trigger"] = f"after({python(transition.stimulus_arguments[0])})"
     else:
         result["event"] = transition.stimulus
     if guards:
         result["guard"] = " and ".join(guards)
-    if actions:
-        result["action"] = "\n".join(actions)
+    if transition.action:
+        result["action"] = "\n".join(statement(s) for s in transition.action)
     return result
 
 
-def _due(delay: str) -> str:
-    """A time event falls due at one instant: sismic's ``after()`` guard stays true from
-    then on, so it is closed again before the next tick of the runs."""
-    return f"after({delay}) and not after({delay} + {INSTANT})"
+def _timed(state: dict, transitions: list[dict]) -> list[dict]:
+    """A time event occurs once, at its deadline, and is dropped unless its guard holds then;
+    sismic's ``after()`` guard stays true from then on. So each time event gets a flag, set
+    on entry of its source and cleared when it fires or, at the same deadline, by an extra
+    internal transition tried after every other one."""
+    dropped = []
+    for number, transition in enumerate(transitions):
+        if not transition["trigger"].startswith("after("):
+            continue
+        flag = f"_armed_{state['name'].replace('/', '_')}_{number}"
+        due = f"{flag} and {transition['trigger']}"
+        state["on entry"] = "\n".join([f"{flag} = True", state.get("on entry", "")]).strip()
+        transition["guard"] = " and ".join([due, *filter(None, [transition.get("guard")])])
+        transition["action"] = "\n".join([f"{flag} = False", transition.get("action", "")])
+        dropped.append(
+            {"trigger": transition["trigger"], "guard": due, "action": f"{flag} = False"}
+        )
+    return transitions + dropped
 
 
 def _prioritised(transitions: list[dict]) -> list[dict]:
@@ -160,9 +163,8 @@ def _transition(path: str, source: ast.State | None, transition: ast.Transition)
     if transition.stimulus == "after":
         delay = python(transition.stimulus_arguments[0])
         result["trigger"] = f"after({delay})"
-        guards.insert(0, _due(delay))
         if outcomes:  # LightRocks takes a completion in the step that completes the source
-            guards.insert(1, f"not {_reached(here, source, outcomes)}")
+            guards.insert(0, f"not {_reached(here, source, outcomes)}")
     elif outcomes and not transition.stimulus:
         guards.insert(0, _reached(here, source, outcomes))
     elif transition.stimulus in outcomes:
