@@ -19,7 +19,7 @@ from lightrocks.languages.lightrocks.syntax import parse_statechart
 from statecharts.random_charts import TICK, VARIABLES, random_chart
 from statecharts.sismic_chart import Reference, to_sismic
 
-CHARTS = 30
+CHARTS = 40
 SWEEP = 400
 SEQUENCES = 6
 LENGTH = 14
