@@ -101,6 +101,8 @@ def _timed(state: dict, transitions: list[dict]) -> list[dict]:
             continue
         flag = f"_armed_{state['name'].replace('/', '_')}_{number}"
         due = f"{flag} and {transition['trigger']}"
+        if "completed" in transition:
+            due += f" and not {transition.pop('completed')}"
         state["on entry"] = "\n".join([f"{flag} = True", state.get("on entry", "")]).strip()
         transition["guard"] = " and ".join([due, *filter(None, [transition.get("guard")])])
         transition["action"] = "\n".join([f"{flag} = False", transition.get("action", "")])
@@ -164,7 +166,7 @@ def _transition(path: str, source: ast.State | None, transition: ast.Transition)
         delay = python(transition.stimulus_arguments[0])
         result["trigger"] = f"after({delay})"
         if outcomes:  # LightRocks takes a completion in the step that completes the source
-            guards.insert(0, f"not {_reached(here, source, outcomes)}")
+            result["completed"] = _reached(here, source, outcomes)
     elif outcomes and not transition.stimulus:
         guards.insert(0, _reached(here, source, outcomes))
     elif transition.stimulus in outcomes:
