@@ -927,8 +927,9 @@ class ComponentBuilder:
         choice = region.pseudostates.get(transition.target)
         if choice is not None and choice.kind == "choice":
             branches = self._choose(owner, choice, lines, condition, bool(post))
-        elif target is None:  # an outcome of the enclosing state
-            branches = self._complete(owner, transition.target, lines, condition)
+        elif target is None:  # an outcome of the enclosing state, which forgets its history
+            forget = [f"{self.memories[id(owner)]} := 0;"] if id(owner) in self.memories else []
+            branches = self._complete(owner, transition.target, lines + forget, condition)
         elif transition.target_history:
             history = target.info.region.pseudostates[transition.target_history]
             deep = history.kind == "deep history"

@@ -86,6 +86,8 @@ CONSTRUCTS = [
          "go,start,faster,pause,jump,pause,resume,faster,finish,again,start,faster,pause,jump,"
          "pause,reset,go,pause,resume,finish"),
         ("history without memory", "Recorder", "again,pause,resume"),
+        ("history forgets an end condition", "Recorder",
+         "go,start,faster,abort,again,start,pause,jump,abort,go,pause,resume"),
         ("the player of the reference", "Player",
          "play,+600ms,next,pause,resume,pause,stop,play,pause,resume,+3200ms,stop"),
         ("regions take one event", "Crossing", "start,+150ms,press,press,press,press,quit"),
