@@ -407,6 +407,7 @@ class ComponentBuilder:
         self.scope = self._scope(self.region, {})
         self.events: dict[str, str] = {}
         self.leaves: dict[int, str] = {}  # id(node) -> step of a resting leaf
+        self.resting: dict[str, str] = {}  # step -> its flag "active in the scan before"
         self.exits: dict[str, str] = {}
         self.stops: dict[int, list[str]] = {}  # id(node) -> lines that stop its command
         self.memories: dict[int, str] = {}  # id(composite) -> its history variable
@@ -657,7 +658,7 @@ class ComponentBuilder:
                 ),
             ],
         )  # fmt: skip
-        self._body(parallel.watch, "N", staying + self._ticks(node))
+        self._run(parallel.watch, staying + self._ticks(parallel.watch, node))
         # declared first, the watch reads the regions' step flags before any region moves:
         # MatIEC clears a step's flag as soon as one of its transitions fires
         added = self.block.transitions[before:]
@@ -746,17 +747,25 @@ class ComponentBuilder:
                 self._branches(between, violated)
             else:
                 self._go(between, branch.target, "")
-        return staying + ([f"{resting} := TRUE;"] if resting else [])
+        return staying
 
     def _resting(self, step: str) -> str:
         """A flag that ``step`` was active in the scan before, cleared when it is left: an
         SFC runs a step's actions in the scan that enters it, while the event input that
-        entered it is still set."""
-        flag = self.names.claim(f"{step}_resting")
-        comment = "active in the scan before: the event that entered it is not its own"
-        self.block.locals.append(Variable(flag, "BOOL", comment=comment))
-        self._body(step, "P0", [f"{flag} := FALSE;"])
-        return flag
+        entered it is still set, and while a time event due at the instant of that entry is
+        still to be taken. The step's N action sets it last (:meth:`_run`)."""
+        if step not in self.resting:
+            flag = self.names.claim(f"{step}_resting")
+            comment = "active in the scan before: the scan that entered it is not its own"
+            self.block.locals.append(Variable(flag, "BOOL", comment=comment))
+            self._body(step, "P0", [f"{flag} := FALSE;"])
+            self.resting[step] = flag
+        return self.resting[step]
+
+    def _run(self, step: str, lines: list[str]) -> None:
+        """The N action of a resting step: ``lines``, then its flag, if it has one, raised."""
+        flag = self.resting.get(step)
+        self._body(step, "N", lines + ([f"{flag} := TRUE;"] if flag else []))
 
     def _exit(self, outcome: str) -> str:
         """The step that raises ``done`` and ``outcome`` until ``execute`` falls."""
@@ -850,14 +859,20 @@ class ComponentBuilder:
         number = 0 if node.info.state.is_final else parent.nested.index(node) + 1
         return [f"{self.memories[id(parent)]} := {number};"]
 
-    def _ticks(self, node: Node) -> list[str]:
-        """N-action lines of a leaf that run the timers of its state and the states around
-        it: the flag reads the timer's output of the scan before, so the scan in which the
-        deadline shows is the one scan in which the time event fires."""
+    def _ticks(self, step: str, node: Node) -> list[str]:
+        """N-action lines of a leaf's ``step`` that run the timers of its state and the states
+        around it: the flag reads the timer's output of the scan before, so the scan in which
+        the deadline shows is the one scan in which the time event fires. A transition leaving
+        a state around the leaf keeps its event one scan longer when the leaf was entered in
+        that scan: an inner transition due at the same deadline took it, and at run time the
+        outer event follows at the same instant."""
         lines = []
         for owner in self._owners(node):
             for timer in self.timers.get(id(owner) if owner else None, []):
-                lines += [f"{timer.passed} := {timer.passed} OR {timer.instance}.Q;",
+                due = f"{timer.instance}.Q"
+                if owner is not node and isinstance(timer.transition, ast.Transition):
+                    due = f"({due} AND {self._resting(step)})"
+                lines += [f"{timer.passed} := {timer.passed} OR {due};",
                           f"{timer.instance}(IN := TRUE);"]  # fmt: skip
         return lines
 
@@ -1037,7 +1052,7 @@ class ComponentBuilder:
             end = self._end(region)
             branches.insert(0, Branch([parallel.abort], stop + self._exits(owners), end))
         staying = self._branches(step, branches)
-        self._body(step, "N", staying + self._ticks(node))
+        self._run(step, staying + self._ticks(step, node))
 
     def _invariant_branches(self, node: Node) -> list[Branch]:
         """A broken invariant of ``node`` or of a state around it ends that state."""

@@ -86,6 +86,7 @@ CONSTRUCTS = [
          "go,start,faster,pause,jump,pause,resume,faster,finish,again,start,faster,pause,jump,"
          "pause,reset,go,pause,resume,finish"),
         ("history without memory", "Recorder", "again,pause,resume"),
+        ("time events at one deadline", "Chime", "go,+150ms,+50ms,+100ms,go,+300ms,quit"),
         ("history forgets an end condition", "Recorder",
          "go,start,faster,abort,again,start,pause,jump,abort,go,pause,resume"),
         ("the player of the reference", "Player",
