@@ -24,6 +24,7 @@ from typing import Any, Protocol
 
 from lightrocks.workbench.diagnostics import Diagnostic
 from lightrocks.workbench.reads import Reads
+from lightrocks.workbench.sources import sources_digest
 
 FORMAT = "1"  # what a stored entry means: raised to retire every entry stored before
 MEMORY_ENTRIES = 4  # whole contexts are large: the last few checks of a session
@@ -99,19 +100,14 @@ def code_digest() -> str:
     registered language and extension (its entry point, distribution version and sources).
     An editable install changes the sources without changing any version."""
     digest = hashlib.blake2b(digest_size=20)
-    folders = {Path(__file__).resolve().parent.parent / name for name in _CHECKING_CODE}
+    places = {Path(__file__).resolve().parent.parent / name for name in _CHECKING_CODE}
     for group in GROUPS:
         for entry in sorted(entry_points(group=group), key=lambda e: (e.name, e.value)):
             release = entry.dist.version if entry.dist is not None else ""
             digest.update(f"{group}\x00{entry.name}\x00{entry.value}\x00{release}\x00".encode())
-            folders.add(_sources(entry.module))
+            places.add(_sources(entry.module))
     digest.update(_version().encode() + b"\x00")
-    for folder in sorted(folders):
-        files = sorted(folder.rglob("*")) if folder.is_dir() else [folder]
-        for path in files:
-            if path.suffix in (".py", ".tx") and "__pycache__" not in path.parts:
-                digest.update(str(path).encode("utf-8", "surrogateescape") + b"\x00")
-                digest.update(path.read_bytes() + b"\x00")
+    digest.update(sources_digest(places, (".py", ".tx")).encode())
     return digest.hexdigest()
 
 

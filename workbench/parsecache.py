@@ -22,6 +22,7 @@ from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.depth import TOO_DEEP, deepest, deepest_node
 from lightrocks.workbench.extensions import extensions_of
 from lightrocks.workbench.languages import Language
+from lightrocks.workbench.sources import sources_digest
 
 
 class Store(Protocol):
@@ -92,12 +93,7 @@ def grammar_digest(module: str) -> str:
     """A digest of the grammar fragments and of the code turning parse trees into units:
     an editable install changes them without changing the version."""
     folders = {Path(importlib.import_module(module).__file__).parent, Path(ast.__file__).parent}
-    digest = hashlib.sha256()
-    for folder in sorted(folders):
-        for path in sorted(folder.glob("*")):
-            if path.suffix in (".tx", ".py"):
-                digest.update(path.name.encode() + b"\x00" + path.read_bytes() + b"\x00")
-    return digest.hexdigest()
+    return sources_digest(folders, (".tx", ".py"))
 
 
 @cache

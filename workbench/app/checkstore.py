@@ -1,19 +1,16 @@
 """The findings cache on disk: the findings of a check and what it read, as JSON.
 
 Entries are data only and are checked field by field when read: a planted or corrupt entry
-is a miss. They are written to a private temporary file and renamed into place, so readers
-never see half an entry.
+is a miss. They are written whole and renamed into place (``put_json``).
 """
 
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
-from lightrocks.workbench.app.cachedir import cache_root
+from lightrocks.workbench.app.cachedir import cache_root, put_json
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 from lightrocks.workbench.reads import Reads
 
@@ -37,7 +34,6 @@ class DiskStore:
             return None
 
     def put(self, key: str, reads: Reads, findings: list[Diagnostic]) -> None:
-        target = self.folder / key[:2] / key
         entry = {
             "reads": reads.to_json(),
             "findings": [
@@ -46,15 +42,7 @@ class DiskStore:
             ],
         }
         try:
-            target.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-            handle, staged = tempfile.mkstemp(dir=target.parent, prefix=f".{key}.")
-            try:
-                with os.fdopen(handle, "w", encoding="utf-8") as file:
-                    json.dump(entry, file, separators=(",", ":"))
-                os.replace(staged, target)
-            except BaseException:
-                Path(staged).unlink(missing_ok=True)
-                raise
+            put_json(self.folder / key[:2] / key, entry)
         except (OSError, ValueError):
             return  # a cache that cannot be written only costs the next run a check
 

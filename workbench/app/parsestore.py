@@ -9,15 +9,13 @@ private temporary file and renamed into place, so readers never see half an entr
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from dataclasses import fields, is_dataclass
 from pathlib import Path
 from typing import Any
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem, paused_gc
-from lightrocks.workbench.app.cachedir import cache_root
+from lightrocks.workbench.app.cachedir import cache_root, put_json
 
 CLASSES = {
     name: value
@@ -41,13 +39,8 @@ class DiskStore:
         return result if isinstance(result, ast.Unit | SyntaxProblem) else None
 
     def put(self, key: str, result: ast.Unit | SyntaxProblem) -> None:
-        target = self.folder / key[:2] / key
         try:
-            target.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-            handle, staged = tempfile.mkstemp(dir=target.parent, prefix=f".{key}.")
-            with os.fdopen(handle, "w", encoding="utf-8") as file:
-                json.dump(encode(result), file, separators=(",", ":"))
-            os.replace(staged, target)
+            put_json(self.folder / key[:2] / key, encode(result))
         except (OSError, ValueError, RecursionError):
             return  # a cache that cannot be written only costs the next run a parse
 
