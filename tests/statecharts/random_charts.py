@@ -9,12 +9,18 @@ in. The CoCos are respected by construction rather than by filtering:
 - every state of a level is the target of an event transition from a state reached before
   it, so all states are reachable (LR0207);
 - a transition without stimulus only leaves a state that completes (LR0214), a choice is
-  left by guarded branches and an unguarded last one (LR0216), no transition leaves a final
-  state (LR0208), a history target names a history of its state (LR0215);
+  left by transitions without stimulus (LR0216), no transition leaves a final state
+  (LR0208), a history target names a history of its state (LR0215);
 - transitions stay on their level, so they never cross regions (LR0218), and an orthogonal
   body holds only regions, actions and internal transitions (LR0219).
 
 Integer parameters are read by guards and written by entry, exit and transition actions.
+Guards evaluated within the step that wrote them are favoured: a choice reads what the exit
+actions of its level and the transitions into it write, a completion what the entry of a
+final state and the exit of the completed state write. A choice sometimes has no *else*
+branch, the statechart itself has internal transitions, a composite has self-transitions
+(plain or through its history), and below a composite with history the states nest one
+level deeper, so that deep and shallow history differ.
 The regions of an orthogonal state read and write disjoint sets of them: sismic fires the
 transitions of one step in an order of its own (docs/language.md §15.1), so a value that
 one region writes and another uses in the same step would differ by design. The regions
@@ -25,11 +31,12 @@ from __future__ import annotations
 
 import itertools
 import random
+import re
 from dataclasses import dataclass, field
 
 EVENTS = ("a", "b", "c", "d")
 VARIABLES = ("n", "m", "k")
-DEPTH = 3
+DEPTH = 3  # levels of states; one more below a composite with history
 TICK = 0.25  # every delay is a multiple of it
 
 
@@ -41,6 +48,24 @@ class _Child:
     lines: list[str]
     outcomes: list[str] | None = None  # None: it never completes
     histories: list[str] = field(default_factory=list)
+    composite: bool = False
+    leaving: list[str] = field(default_factory=list)  # parameters its exit action writes
+    completing: list[str] = field(default_factory=list)  # written as it completes
+
+
+@dataclass
+class _Level:
+    """The body of a statechart, composite or region."""
+
+    lines: list[str]
+    outcomes: list[str] | None  # None: it never completes
+    histories: list[str]
+    completing: list[str]  # parameters the entry actions of its final states write
+
+
+def _written(block: str) -> list[str]:
+    """The parameters a block of assignments writes."""
+    return re.findall(r"(\w+) = ", block)
 
 
 class _Writer:
@@ -54,9 +79,12 @@ class _Writer:
 
     # -- expressions ----------------------------------------------------------------------
 
-    def guard(self, readable: list[str]) -> str:
+    def guard(self, readable: list[str], favoured: list[str] = ()) -> str:
+        """A guard on ``readable``, mostly reading ``favoured`` when there are any."""
         rng = self.rng
-        v, w = rng.choice(readable), rng.choice(readable)
+        favoured = [v for v in favoured if v in readable]
+        v = rng.choice(favoured if favoured and rng.random() < 0.8 else readable)
+        w = rng.choice(readable)
         atoms = [
             f"{v} < {rng.randint(0, 3)}",
             f"{v} >= {rng.randint(0, 3)}",
@@ -89,9 +117,12 @@ class _Writer:
             return f"after({250 * self.rng.randint(1, 4)} ms)"
         return self.rng.choice(EVENTS)
 
-    def transition(self, source: str, target: str, stimulus: str, owned: list[str]) -> str:
+    def transition(
+        self, source: str, target: str, stimulus: str, owned: list[str], favoured: list[str] = ()
+    ) -> str:
         rng = self.rng
-        guard = f" [{self.guard(owned)}]" if owned and rng.random() < 0.3 else ""
+        odds = 0.5 if favoured else 0.3
+        guard = f" [{self.guard(owned, favoured)}]" if owned and rng.random() < odds else ""
         action = f" / {self.block(owned)}" if owned and rng.random() < 0.3 else ""
         stimulus = f" {stimulus}" if stimulus else ""
         return f"{source} -> {target}{guard}{stimulus}{action};"
@@ -107,51 +138,54 @@ class _Writer:
         if owned and rng.random() < 0.2:
             lines.append(f"exit / {self.block(owned)}")
         if rng.random() < 0.25:
-            guard = f" [{self.guard(owned)}]" if owned and rng.random() < 0.4 else ""
-            action = f" / {self.block(owned)}" if owned else ""
-            lines.append(f"internal{guard} {self.stimulus()}{action};")
+            lines.append(self.internal(owned))
         return lines
 
-    def child(self, depth: int, owned: list[str], initial: bool) -> _Child:
+    def internal(self, owned: list[str]) -> str:
+        rng = self.rng
+        guard = f" [{self.guard(owned)}]" if owned and rng.random() < 0.4 else ""
+        action = f" / {self.block(owned)}" if owned else ""
+        return f"internal{guard} {self.stimulus()}{action};"
+
+    def child(self, depth: int, owned: list[str], initial: bool, limit: int) -> _Child:
+        """A state of level ``depth``; composite or orthogonal only above ``limit``."""
         name = self.fresh("S")
         head = ("initial " if initial else "") + f"state {name}"
-        roll = self.rng.random() if depth < DEPTH else 1.0
+        roll = self.rng.random() if depth < limit else 1.0
         body = self.behaviour(owned)
-        outcomes, histories = None, []
+        leaving = [v for line in body if line.startswith("exit") for v in _written(line)]
+        inner = None
         if roll < 0.15:
-            regions, outcomes = self.regions(depth + 1, owned)
-            body += regions
-        elif roll < 0.45:
-            inner, outcomes, histories = self.level(depth + 1, owned, "composite")
-            body += inner
+            inner = self.regions(depth + 1, owned, limit)
+        elif roll < (0.6 if limit > DEPTH else 0.45):
+            inner = self.level(depth + 1, owned, "composite", limit)
+        if inner is not None:
+            body += inner.lines
         if not body:
             return _Child(name, [f"{head};"])
-        return _Child(name, [f"{head} {{", *_indent(body), "}"], outcomes, histories)
+        lines = [f"{head} {{", *_indent(body), "}"]
+        if inner is None:
+            return _Child(name, lines, leaving=leaving)
+        return _Child(name, lines, inner.outcomes, inner.histories, True, leaving, inner.completing)
 
-    def regions(self, depth: int, owned: list[str]) -> tuple[list[str], list[str] | None]:
+    def regions(self, depth: int, owned: list[str], limit: int = DEPTH) -> _Level:
         """Two or three regions that own disjoint parts of the parameters; the outcomes of the
         orthogonal state are the finals of its first region, when every region has one."""
         count = self.rng.choice([2, 2, 2, 3])
         shares: list[list[str]] = [[] for _ in range(count)]
         for variable in self.rng.sample(owned, len(owned)):
             shares[self.rng.randrange(count)].append(variable)
-        lines, finals = [], []
+        lines, finals, completing = [], [], []
         for share in shares:
-            body, outcomes, _ = self.level(depth, share, "region")
-            lines += [f"region {self.fresh('R')} {{", *_indent(body), "}"]
-            finals.append(outcomes)
-        return lines, finals[0] if all(finals) else None
+            body = self.level(depth, share, "region", limit)
+            lines += [f"region {self.fresh('R')} {{", *_indent(body.lines), "}"]
+            finals.append(body.outcomes)
+            completing += body.completing
+        return _Level(lines, finals[0] if all(finals) else None, [], completing)
 
-    def level(
-        self, depth: int, owned: list[str], kind: str
-    ) -> tuple[list[str], list[str] | None, list[str]]:
-        """The body of a statechart, composite or region: its lines, the outcomes it
-        completes with (None if none) and its history pseudostates."""
+    def level(self, depth: int, owned: list[str], kind: str, limit: int = DEPTH) -> _Level:
+        """The body of a statechart, composite or region."""
         rng = self.rng
-        children = [self.child(depth, owned, i == 0) for i in range(rng.randint(2, 3))]
-        finals = [self.fresh("F") for _ in range(rng.choices([0, 1, 2], [4, 5, 1])[0])]
-        ends = [self.fresh("o") for _ in range(kind == "composite" and rng.random() < 0.25)]
-        choice = self.fresh("C") if rng.random() < 0.3 else None
         histories = []
         if kind == "composite":
             histories = [
@@ -159,10 +193,23 @@ class _Writer:
                 for memory in ("history", "deep history")
                 if rng.random() < 0.3
             ]
+        limit = max(limit, DEPTH + 1 if histories else DEPTH)
+        count = rng.randint(2, 3)
+        children = [self.child(depth, owned, i == 0, limit) for i in range(count)]
+        finals = [self.fresh("F") for _ in range(rng.choices([0, 1, 2], [4, 5, 1])[0])]
+        ends = [self.fresh("o") for _ in range(kind == "composite" and rng.random() < 0.25)]
+        choice = self.fresh("C") if rng.random() < 0.3 else None
         lines = [f"end condition {e};" for e in ends]
         for c in children:
             lines += c.lines
-        lines += [f"final state {f};" for f in finals]
+        completing = []
+        for f in finals:
+            if owned and rng.random() < 0.3:
+                entry = self.block(owned)
+                completing += _written(entry)
+                lines.append(f"final state {f} {{ entry / {entry} }}")
+            else:
+                lines.append(f"final state {f};")
         lines += [f"choice {choice};"] if choice else []
         lines += [f"{h};" for h in histories]
 
@@ -180,25 +227,46 @@ class _Writer:
             source, target = rng.choice(names), rng.choice(targets)
             transitions.append(self.transition(source, target, self.stimulus(), owned))
         for c in children:
+            if c.composite and rng.random() < 0.4:  # external: left and entered again
+                again = rng.choice([c.name, *(f"{c.name}.{h}" for h in c.histories)])
+                transitions.append(self.transition(c.name, again, self.stimulus(), owned))
             if c.outcomes and rng.random() < 0.9:
+                favoured = c.completing + c.leaving
                 for outcome in c.outcomes:
                     if rng.random() < 0.4:
                         target = rng.choice(targets)
-                        transitions.append(self.transition(c.name, target, outcome, owned))
+                        transitions.append(
+                            self.transition(c.name, target, outcome, owned, favoured)
+                        )
                 if rng.random() < 0.8:
                     target = rng.choice(targets)
-                    transitions.append(self.transition(c.name, target, "", owned))
+                    transitions.append(self.transition(c.name, target, "", owned, favoured))
         rng.shuffle(transitions)
-        if choice:  # in order: guarded branches, then the else branch
-            branches = [t for t in targets if t != choice]
-            for _ in range(rng.randint(1, 2) if owned else 0):
-                action = f" / {self.block(owned)}" if rng.random() < 0.3 else ""
-                guard = self.guard(owned)
-                transitions.append(f"{choice} -> {rng.choice(branches)} [{guard}]{action};")
-            transitions.append(f"{choice} -> {rng.choice(branches)};")
+        if choice:  # its guards run after the exit action of the source and the transition
+            entering = [t for t in transitions if f"-> {choice} " in t]
+            favoured = [v for c in children for v in c.leaving]
+            favoured += [v for t in entering for v in _written(t)]
+            transitions += self.branches(
+                choice, [t for t in targets if t != choice], owned, favoured
+            )
         lines += transitions
         outcomes = finals + ends
-        return lines, outcomes or None, [h.split()[-1] for h in histories]
+        return _Level(lines, outcomes or None, [h.split()[-1] for h in histories], completing)
+
+    def branches(
+        self, choice: str, targets: list[str], owned: list[str], favoured: list[str]
+    ) -> list[str]:
+        """Guarded branches in order, mostly reading what the step wrote before the choice,
+        then the else branch, which is sometimes left out: then no branch may hold."""
+        rng = self.rng
+        lines = []
+        for _ in range(rng.randint(1, 2) if owned else 0):
+            action = f" / {self.block(owned)}" if rng.random() < 0.3 else ""
+            guard = self.guard(owned, favoured)
+            lines.append(f"{choice} -> {rng.choice(targets)} [{guard}]{action};")
+        if not lines or rng.random() < 0.7:
+            lines.append(f"{choice} -> {rng.choice(targets)};")
+        return lines
 
 
 def _indent(lines: list[str]) -> list[str]:
@@ -210,9 +278,10 @@ def random_chart(seed: int, name: str = "R", timed: bool = True) -> str:
     writer = _Writer(seed, timed)
     rng = writer.rng
     defaults = [f"Integer {v} = {rng.randint(0, 2)};" for v in VARIABLES]
+    top = [writer.internal(list(VARIABLES)) for _ in range(rng.choice([0, 0, 1, 2]))]
     if rng.random() < 0.2:
-        body, _ = writer.regions(1, list(VARIABLES))
+        body = writer.regions(1, list(VARIABLES))
     else:
-        body, _, _ = writer.level(1, list(VARIABLES), "top")
-    lines = ["parameters {", *_indent(defaults), "}", "", *body]
+        body = writer.level(1, list(VARIABLES), "top")
+    lines = ["parameters {", *_indent(defaults), "}", "", *top, *body.lines]
     return "\n".join(["package d;", "", f"statechart {name} {{", *_indent(lines), "}", ""])

@@ -29,6 +29,8 @@ OPERATORS = {"&&": "and", "||": "or"}
 
 def to_sismic(chart: ast.Statechart) -> Statechart:
     root = _state(chart.name, chart.name, chart.elements)
+    if "transitions" in root:  # internal transitions of the statechart itself
+        root["transitions"] = _prioritised(_timed(root, root["transitions"]))
     parameters = [
         p for e in chart.elements if isinstance(e, ast.ParameterBlock) for p in e.parameters
     ]

@@ -2,9 +2,10 @@
 
 :mod:`statecharts.random_charts` writes charts nobody hand-wrote; after every event (or
 clock tick) both interpreters must have the same active configuration and the same values
-of the Integer parameters. The documented design difference of docs/language.md §15.1 (an
-unhandled outcome ends the parent with ``error``) is counted apart, as in
-:mod:`statecharts.test_sismic_differential`. A failure prints the chart and the events, so
+of the Integer parameters. The documented design differences of docs/language.md §15.1 are
+counted apart: an unhandled outcome ends the parent with ``error`` (as in
+:mod:`statecharts.test_sismic_differential`), and so does a choice none of whose branches
+holds, where sismic rests in the choice. A failure prints the chart and the events, so
 it can be replayed with :func:`divergence`.
 """
 
@@ -67,15 +68,16 @@ def _theirs(interpreter: Reference) -> Observation:
 
 
 def divergence(cls: type, text: str, events: list[str]) -> str | None:
-    """``None`` when both agree step by step, ``"documented"`` for the documented design
+    """``None`` when both agree step by step, ``"documented"`` for a documented design
     difference, else a report that replays the disagreement."""
     mine, chart = ours(cls, events)
     reference = theirs(text, events)
-    if all(_same(a, b) for a, b in zip(mine, reference, strict=True)):
+    pairs = enumerate(zip(mine, reference, strict=True))
+    step = next((i for i, (a, b) in pairs if not _same(a, b)), None)
+    if step is None:
         return None
-    if _unhandled_outcome(chart):
+    if _unhandled_outcome(chart) or _no_branch_holds(chart, mine[step], reference[step]):
         return "documented"
-    step = next(i for i, (a, b) in enumerate(zip(mine, reference, strict=True)) if not _same(a, b))
     return (
         f"after {events[:step]} (step {step}):\n  LightRocks {mine[step]}\n"
         f"  sismic     {reference[step]}\nevents {events}\n{text}"
@@ -89,6 +91,16 @@ def _same(mine: Observation, reference: Observation) -> bool:
 
 def _unhandled_outcome(chart) -> bool:
     return chart.outcome == "error" and chart.fault.message.startswith("unhandled outcome")
+
+
+def _no_branch_holds(chart, mine: Observation, reference: Observation) -> bool:
+    """LightRocks ended with ``error`` because no branch of a choice held, in the step where
+    sismic came to rest in that very choice."""
+    fault = chart.fault
+    if chart.outcome != "error" or not fault.message.startswith("no branch of choice"):
+        return False
+    choice = fault.message.split("'")[1]
+    return mine == ((), None) and f"{fault.origin[0]}/{choice}" in reference[0]
 
 
 def sequences(cls: type, seed: int) -> list[list[str]]:
