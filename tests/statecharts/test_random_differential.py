@@ -12,11 +12,13 @@ it can be replayed with :func:`divergence`.
 from __future__ import annotations
 
 import random
+from collections.abc import Iterator
 
 import pytest
 from sismic.clock import SimulatedClock
 
 from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.metamodel import ast
 from statecharts.random_charts import TICK, VARIABLES, random_chart
 from statecharts.sismic_chart import Reference, to_sismic
 
@@ -139,3 +141,97 @@ def test_random_charts_agree_with_sismic(seed: int, build, tally) -> None:
 @pytest.mark.parametrize("seed", range(CHARTS, CHARTS + SWEEP))
 def test_more_random_charts_agree_with_sismic(seed: int, build, tally) -> None:
     _agrees(seed, build, tally)
+
+
+PICK = """package d;
+
+statechart Pick {
+  parameters {
+    Integer n = 0;
+    Integer m = 0;
+    Integer k = 0;
+  }
+
+  initial state Idle;
+  state Done;
+  choice Which;
+
+  Idle -> Which go / { n = n + 1; };
+  Which -> Done [n == 2];
+  Idle -> Idle bump / { n = n + 1; };
+}
+"""
+
+
+@pytest.mark.parametrize(
+    ("events", "found"), [(["bump", "go"], None), (["go"], "documented"), (["bump"], None)]
+)
+def test_a_choice_without_a_branch_that_holds_is_a_documented_difference(
+    build, events: list[str], found: str | None
+) -> None:
+    """Counted apart only where LightRocks ends with ``error`` and sismic rests in the choice."""
+    assert divergence(build("Pick", PICK), PICK, events) == found
+
+
+def test_only_sismic_resting_in_that_choice_makes_the_difference_documented(build) -> None:
+    mine, chart = ours(build("Pick", PICK), ["go"])
+    assert mine[-1] == ((), None)
+    assert _no_branch_holds(chart, mine[-1], (("Pick", "Pick/Which"), (1, 0, 0)))
+    assert not _no_branch_holds(chart, mine[-1], (("Pick", "Pick/Idle"), (1, 0, 0)))
+
+
+def _constructs(seed: int) -> set[str]:
+    """Which of the constructs the generator is meant to write a random chart holds."""
+    chart = parse_statechart(random_chart(seed), "chart.lr").statechart
+    found = set()
+    if any(isinstance(e, ast.InternalTransition) for e in chart.elements):
+        found.add("internal transition of the statechart")
+    for body in _bodies(chart.elements):
+        transitions = [e for e in body if isinstance(e, ast.Transition)]
+        composites = {e.name for e in body if isinstance(e, ast.State) and _levels(e.body or ())}
+        if any(t.source == t.target and t.source in composites for t in transitions):
+            found.add("self-transition of a composite")
+        for choice in (e.name for e in body if _pseudostate(e, "choice")):
+            if all(t.guard is not None for t in transitions if t.source == choice):
+                found.add("choice without else")
+        if any(_pseudostate(e, "deep history") for e in body) and _levels(body) >= 3:
+            found.add("deep history over three levels of states")
+    return found
+
+
+def _pseudostate(element: object, kind: str) -> bool:
+    return isinstance(element, ast.Pseudostate) and element.kind == kind
+
+
+def _inner(element: object) -> tuple:
+    if isinstance(element, ast.Region):
+        return element.elements
+    return (element.body or ()) if isinstance(element, ast.State) else ()
+
+
+def _bodies(elements: tuple) -> Iterator[tuple]:
+    """``elements`` and every body of a state or region below."""
+    yield elements
+    for element in elements:
+        if _inner(element):
+            yield from _bodies(_inner(element))
+
+
+def _levels(elements: tuple) -> int:
+    """How many levels of states nest in ``elements`` (regions add none)."""
+    levels = [
+        _levels(_inner(e)) + isinstance(e, ast.State)
+        for e in elements
+        if isinstance(e, (ast.State, ast.Region))
+    ]
+    return max(levels, default=0)
+
+
+def test_the_quick_charts_hold_every_construct_the_generator_writes() -> None:
+    found = set().union(*(_constructs(seed) for seed in range(CHARTS)))
+    assert found == {
+        "internal transition of the statechart",
+        "self-transition of a composite",
+        "choice without else",
+        "deep history over three levels of states",
+    }
