@@ -19,8 +19,8 @@ Guards evaluated within the step that wrote them are favoured: a choice reads wh
 actions of its level and the transitions into it write, a completion what the entry of a
 final state and the exit of the completed state write. A choice sometimes has no *else*
 branch, the statechart itself has internal transitions, a composite has self-transitions
-(plain or through its history), and below a composite with history the states nest one
-level deeper, so that deep and shallow history differ.
+(plain or through its history), and below a composite with deep history the states nest
+one level deeper, so that its memory reaches three levels of states.
 The regions of an orthogonal state read and write disjoint sets of them: sismic fires the
 transitions of one step in an order of its own (docs/language.md §15.1), so a value that
 one region writes and another uses in the same step would differ by design. The regions
@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 
 EVENTS = ("a", "b", "c", "d")
 VARIABLES = ("n", "m", "k")
-DEPTH = 3  # levels of states; one more below a composite with history
+DEPTH = 3  # levels of states; one more below a composite with deep history
 TICK = 0.25  # every delay is a multiple of it
 
 
@@ -157,7 +157,7 @@ class _Writer:
         inner = None
         if roll < 0.15:
             inner = self.regions(depth + 1, owned, limit)
-        elif roll < (0.6 if limit > DEPTH else 0.45):
+        elif roll < 0.45:
             inner = self.level(depth + 1, owned, "composite", limit)
         if inner is not None:
             body += inner.lines
@@ -193,7 +193,8 @@ class _Writer:
                 for memory in ("history", "deep history")
                 if rng.random() < 0.3
             ]
-        limit = max(limit, DEPTH + 1 if histories else DEPTH)
+        if any(h.startswith("deep") for h in histories):  # its memory reaches one level further
+            limit = max(limit, DEPTH + 1)
         count = rng.randint(2, 3)
         children = [self.child(depth, owned, i == 0, limit) for i in range(count)]
         finals = [self.fresh("F") for _ in range(rng.choices([0, 1, 2], [4, 5, 1])[0])]

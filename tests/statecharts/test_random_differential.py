@@ -194,8 +194,9 @@ def _constructs(seed: int) -> set[str]:
         for choice in (e.name for e in body if _pseudostate(e, "choice")):
             if all(t.guard is not None for t in transitions if t.source == choice):
                 found.add("choice without else")
-        if any(_pseudostate(e, "deep history") for e in body) and _levels(body) >= 3:
-            found.add("deep history over three levels of states")
+        for memory in ("history", "deep history"):
+            if any(_pseudostate(e, memory) for e in body) and _levels(body) >= 3:
+                found.add(f"{memory} over three levels of states")
     return found
 
 
@@ -233,5 +234,6 @@ def test_the_quick_charts_hold_every_construct_the_generator_writes() -> None:
         "internal transition of the statechart",
         "self-transition of a composite",
         "choice without else",
+        "history over three levels of states",
         "deep history over three levels of states",
     }
