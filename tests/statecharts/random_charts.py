@@ -121,8 +121,7 @@ class _Writer:
         self, source: str, target: str, stimulus: str, owned: list[str], favoured: list[str] = ()
     ) -> str:
         rng = self.rng
-        odds = 0.5 if favoured else 0.3
-        guard = f" [{self.guard(owned, favoured)}]" if owned and rng.random() < odds else ""
+        guard = f" [{self.guard(owned, favoured)}]" if owned and rng.random() < 0.3 else ""
         action = f" / {self.block(owned)}" if owned and rng.random() < 0.3 else ""
         stimulus = f" {stimulus}" if stimulus else ""
         return f"{source} -> {target}{guard}{stimulus}{action};"
