@@ -117,3 +117,35 @@ def test_time_events_at_one_deadline_fire_inner_and_internal_first(build) -> Non
     chart.advance(0.5)
     assert chart.n == 11
     assert chart.active_configuration == ("AtOnce", "Next")
+
+
+LATE = """package d;
+
+statechart Late {
+  parameters {
+    Integer n = 0;
+  }
+
+  initial state Outer {
+    initial state Wait;
+    state Done;
+    choice Which;
+    Wait -> Which after(500 ms);
+    Which -> Done [n == 1];
+  }
+  state Away;
+
+  Outer -> Away after(500 ms);
+}
+"""
+
+
+def test_a_choice_without_a_branch_that_holds_is_not_saved_by_a_later_time_event(build) -> None:
+    """The inner time event fires first and reaches the choice; its failure ends the run
+    before the enclosing time event due at the same deadline is taken (sismic would take it
+    and leave the choice, docs/language.md §15.1)."""
+    chart = build("Late", LATE)().start()
+    chart.advance(0.5)
+    assert chart.outcome == "error"
+    assert chart.fault.message == "no branch of choice 'Which' holds"
+    assert chart.fault.origin == ["Late/Outer", "Late"]
