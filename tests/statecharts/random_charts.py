@@ -32,6 +32,7 @@ from __future__ import annotations
 import itertools
 import random
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 EVENTS = ("a", "b", "c", "d")
@@ -79,7 +80,7 @@ class _Writer:
 
     # -- expressions ----------------------------------------------------------------------
 
-    def guard(self, readable: list[str], favoured: list[str] = ()) -> str:
+    def guard(self, readable: list[str], favoured: Sequence[str] = ()) -> str:
         """A guard on ``readable``, mostly reading ``favoured`` when there are any."""
         rng = self.rng
         favoured = [v for v in favoured if v in readable]
@@ -118,7 +119,12 @@ class _Writer:
         return self.rng.choice(EVENTS)
 
     def transition(
-        self, source: str, target: str, stimulus: str, owned: list[str], favoured: list[str] = ()
+        self,
+        source: str,
+        target: str,
+        stimulus: str,
+        owned: list[str],
+        favoured: Sequence[str] = (),
     ) -> str:
         rng = self.rng
         guard = f" [{self.guard(owned, favoured)}]" if owned and rng.random() < 0.3 else ""
@@ -141,6 +147,7 @@ class _Writer:
         return lines
 
     def internal(self, owned: list[str]) -> str:
+        """An internal transition, of a state or of the statechart itself."""
         rng = self.rng
         guard = f" [{self.guard(owned)}]" if owned and rng.random() < 0.4 else ""
         action = f" / {self.block(owned)}" if owned else ""
@@ -194,8 +201,7 @@ class _Writer:
             ]
         if any(h.startswith("deep") for h in histories):  # its memory reaches one level further
             limit = max(limit, DEPTH + 1)
-        count = rng.randint(2, 3)
-        children = [self.child(depth, owned, i == 0, limit) for i in range(count)]
+        children = [self.child(depth, owned, i == 0, limit) for i in range(rng.randint(2, 3))]
         finals = [self.fresh("F") for _ in range(rng.choices([0, 1, 2], [4, 5, 1])[0])]
         ends = [self.fresh("o") for _ in range(kind == "composite" and rng.random() < 0.25)]
         choice = self.fresh("C") if rng.random() < 0.3 else None
