@@ -47,6 +47,10 @@ def _state(path: str, name: str, body: tuple[Any, ...] | None, final: bool = Fal
     for action in (e for e in body or () if isinstance(e, ast.Action)):
         state[f"on {action.kind}"] = "\n".join(statement(s) for s in action.statements)
     internal = [_internal(e) for e in body or () if isinstance(e, ast.InternalTransition)]
+    outcomes = _outcomes(body or ())
+    for transition in internal:  # a completed state is left before its time events fire
+        if outcomes and transition["trigger"].startswith("after("):
+            transition["completed"] = _reached(path, body, outcomes)
     if internal:
         state["transitions"] = internal
     regions = [e for e in body or () if isinstance(e, ast.Region)]
@@ -128,8 +132,8 @@ def _prioritised(transitions: list[dict]) -> list[dict]:
     return transitions
 
 
-def _outcomes(source: ast.State | None) -> list[str]:
-    body = source.body or () if source is not None else ()
+def _outcomes(body: tuple[Any, ...]) -> list[str]:
+    """The outcomes a state with this body completes with."""
     ends = [e.name for e in body if isinstance(e, ast.Condition) and e.kind == "end"]
     regions = [e for e in body if isinstance(e, ast.Region)]
     if regions:
@@ -141,10 +145,11 @@ def _finals(body: tuple[Any, ...]) -> list[str]:
     return [e.name for e in body if isinstance(e, ast.State) and e.is_final]
 
 
-def _reached(here: str, source: ast.State, outcomes: list[str]) -> str:
-    """The guard that ``source`` has completed with one of ``outcomes``: in a final state,
-    or with every region final and the first one in one of ``outcomes``."""
-    regions = [e for e in source.body or () if isinstance(e, ast.Region)]
+def _reached(here: str, body: tuple[Any, ...], outcomes: list[str]) -> str:
+    """The guard that the state at ``here`` with ``body`` has completed with one of
+    ``outcomes``: in a final state, or with every region final and the first one in one of
+    ``outcomes``."""
+    regions = [e for e in body if isinstance(e, ast.Region)]
     if not regions:
         return "(" + " or ".join(f"active('{here}/{o}')" for o in outcomes) + ")"
     first, *others = regions
@@ -159,7 +164,8 @@ def _transition(path: str, source: ast.State | None, transition: ast.Transition)
     if transition.target_history:
         target += f"/{transition.target_history}"
     result: dict[str, Any] = {"target": target, "trigger": ""}
-    outcomes = _outcomes(source)
+    body = source.body or () if source is not None else ()
+    outcomes = _outcomes(body)
     completes = bool(outcomes) and transition.stimulus in ("", *outcomes)
     after_exit = _after_exit(source) if completes else {}
     guards = [python(transition.guard, after_exit)] if transition.guard is not None else []
@@ -168,11 +174,11 @@ def _transition(path: str, source: ast.State | None, transition: ast.Transition)
         delay = python(transition.stimulus_arguments[0])
         result["trigger"] = f"after({delay})"
         if outcomes:  # LightRocks takes a completion in the step that completes the source
-            result["completed"] = _reached(here, source, outcomes)
+            result["completed"] = _reached(here, body, outcomes)
     elif outcomes and not transition.stimulus:
-        guards.insert(0, _reached(here, source, outcomes))
+        guards.insert(0, _reached(here, body, outcomes))
     elif transition.stimulus in outcomes:
-        guards.insert(0, _reached(here, source, [transition.stimulus]))
+        guards.insert(0, _reached(here, body, [transition.stimulus]))
     elif transition.stimulus:  # an event; the branches of a choice have none
         result["event"] = result["trigger"] = transition.stimulus
     if guards:

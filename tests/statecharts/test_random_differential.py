@@ -235,6 +235,36 @@ def test_a_choice_left_by_an_enclosing_time_event_is_the_same_difference(build) 
     assert divergence(build("Late", LATE), LATE, events) == NO_BRANCH
 
 
+OVER = """package d;
+
+statechart Over {
+  parameters {
+    Integer n = 0;
+    Integer m = 0;
+    Integer k = 0;
+  }
+
+  initial state Outer {
+    internal after(500 ms) / { n = n + 1; };
+    initial state Wait;
+    final state Done;
+    Wait -> Done after(500 ms);
+  }
+  state Next;
+
+  Outer -> Next;
+}
+"""
+
+
+def test_a_state_that_completes_drops_its_internal_time_event_due_at_that_time(build) -> None:
+    """The inner time event completes ``Outer``, which is left before its own internal one
+    at the same deadline fires; the sismic translation must not offer both."""
+    events = [STEP, STEP]
+    assert theirs(OVER, events)[0][-1] == (("Over", "Over/Next"), (0, 0, 0))
+    assert divergence(build("Over", OVER), OVER, events) is None
+
+
 def _constructs(seed: int) -> set[str]:
     """Which of the constructs the generator is meant to write a random chart holds."""
     chart = parse_statechart(random_chart(seed), "chart.lr").statechart
