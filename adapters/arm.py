@@ -9,6 +9,8 @@ care which one they read.
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
+
 import numpy as np
 import pinocchio as pin
 
@@ -21,7 +23,7 @@ SLOW_EVERY = 10
 _LOWER = np.tril_indices(ARM_DOF, -1)
 
 
-class ArmState:
+class ArmState(ABC):
     """Kinematics and dynamics of the robot (arm joints, then the two fingers) at one tick.
 
     ``jacobian`` is the TCP Jacobian of the arm joints, LOCAL_WORLD_ALIGNED: its rows are the
@@ -56,9 +58,9 @@ class ArmState:
         """The TCP pose, a new SE3 on each access."""
         return pin.SE3(self.rotation, self.position)
 
+    @abstractmethod
     def update(self) -> None:
-        """Read the plant's state of this tick."""
-        raise NotImplementedError
+        """Take the plant's state of this tick."""
 
     def _slow_tick(self) -> bool:
         """Whether this tick refreshes the mass matrix; counts the tick."""
