@@ -1,0 +1,100 @@
+"""The SFC target judged by MatIEC on random plain statecharts nobody hand-wrote.
+
+:mod:`statecharts.random_charts` writes a chart per seed (composites, orthogonal regions,
+history, choices, finals, end conditions, internal transitions, Integer parameters, time
+events); the generated SFC is compiled by MatIEC, linked with the step harness of
+:mod:`plc`, and must enter the same states and take the same outcomes as the Python runtime
+on a few random scripts of events and time passing. A chart using a construct the SFC target
+refuses (docs/generators.md) is counted apart. A failure names the seed and the script, so
+it can be replayed with :func:`steps_alike`.
+"""
+
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+import pytest
+from conftest import generate
+from plc import Scenario, comparable, driver_source, gcc, iec2c, python_trace, sfc_trace, streams
+from statecharts.random_charts import TICK, random_chart
+from test_matiec import _unit
+
+from lightrocks.workbench.generators import GenerationError
+
+CHARTS = 6
+SWEEP = 60
+SEQUENCES = 3
+LENGTH = 8
+PASSING = (f"+{round(TICK * 1000)}ms", f"+{round(TICK * 2000)}ms")
+SETTLING = f"+{round(TICK * 4000)}ms"  # every script ends letting the longest delay pass
+REFUSED = "the SFC target does not map"
+
+
+def scripts(events: list[str], seed: int) -> list[list[str]]:
+    """Random scripts of the chart's events and time passing in multiples of ``TICK``.
+
+    Each ends with time passing, so the Python side runs on its virtual clock and the time
+    events still due fire on both sides."""
+    rng = random.Random(seed)
+    letters = [*events, *PASSING]
+    return [[*(rng.choice(letters) for _ in range(LENGTH - 1)), SETTLING] for _ in range(SEQUENCES)]
+
+
+def chart_model(folder: Path, seed: int) -> Path:
+    """The random chart of ``seed`` as ``d/R.lr`` under ``folder``."""
+    model = folder / "d" / "R.lr"
+    model.parent.mkdir(parents=True)
+    model.write_text(random_chart(seed))
+    return model
+
+
+def steps_alike(home: Path, folder: Path, seed: int) -> tuple[str, list[list[str]]]:
+    """``("refused", [])`` for a chart the SFC target does not map, else ``("ran", scripts
+    the compiled program steps unlike Python)``."""
+    model = chart_model(folder, seed)
+    try:
+        text = generate("sfc", [model], search=[folder])["R.st"]
+    except GenerationError as error:
+        assert REFUSED in str(error), str(error)
+        return "refused", []
+    unit = _unit(model, [folder])
+    source = folder / "unit.st"
+    source.write_text(text)
+    compiled = iec2c(home, source, folder / "c")
+    assert compiled.returncode == 0, f"seed {seed}: {compiled.stderr}{compiled.stdout}"
+    differing = []
+    events = [v.comment.removeprefix("event ") for v in unit.program.inputs[1:]]
+    for number, script in enumerate(scripts(sorted(events), seed)):
+        scenario = Scenario(f"seed {seed} script {number}", model, events=script)
+        exe = folder / f"run{number}"
+        built = gcc(home, folder / "c", driver_source(unit, scenario, 400_000), exe)
+        assert built.returncode == 0, built.stderr
+        expected = streams(comparable(python_trace(scenario, [folder]), unit), unit)
+        if streams(sfc_trace(exe, unit), unit) != expected:
+            differing.append(script)
+    return "ran", differing
+
+
+def _judge(home: Path, folder: Path, seed: int, tally) -> None:
+    ran, differing = steps_alike(home, folder, seed)
+    tally(
+        "random charts on MatIEC: {alike} of {scripts} scripts on {charts} charts step like "
+        "Python, {refused} charts use a construct the SFC target does not map",
+        charts=int(ran == "ran"),
+        scripts=SEQUENCES if ran == "ran" else 0,
+        alike=SEQUENCES - len(differing) if ran == "ran" else 0,
+        refused=int(ran == "refused"),
+    )
+    assert not differing, f"random chart {seed} steps unlike Python on {differing[0]}"
+
+
+@pytest.mark.parametrize("seed", range(CHARTS))
+def test_random_charts_step_like_python(home: Path, tmp_path: Path, seed: int, tally) -> None:
+    _judge(home, tmp_path, seed, tally)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(CHARTS, CHARTS + SWEEP))
+def test_more_random_charts_step_like_python(home: Path, tmp_path: Path, seed: int, tally) -> None:
+    _judge(home, tmp_path, seed, tally)
