@@ -110,6 +110,8 @@ CONSTRUCTS = [
          "hold,add,take,hold,add,add,take"),
         ("an event a region takes is not taken around it", "Shuttle",
          "move,toggle,move,toggle,toggle,move,quit"),
+        ("history of the state a transition leaves", "Rewind",
+         "next,again,back,again,next,again,quit"),
     ]
 ] + [
     # Regions of a task: the arm snaps a terminal while the camera looks ahead. Only faults
