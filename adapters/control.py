@@ -1,9 +1,10 @@
-"""Impedance controllers shared by both adapters; kinematics and dynamics come from Pinocchio.
+"""Impedance controllers shared by both adapters, on the plant's ``ArmState``.
 
-Runs at 1 kHz: ``ArmState.update`` once per tick, then the active controller's ``torque``.
-Everything here is the hot path, so the per-tick work is a handful of Pinocchio calls and small
-NumPy products; the operational-space inertia (for damping) and the null-space projector are
-refreshed every ``SLOW_EVERY`` ticks only, because they change slowly with the configuration.
+Runs at 1 kHz: the plant updates its arm state once per tick, then the active controller's
+``torque`` reads it. Everything here is the hot path, so the per-tick work is a few small
+NumPy products and Pinocchio's ``exp3``/``log3``; the operational-space inertia (for damping)
+and the null-space projector are refreshed every ``SLOW_EVERY`` ticks only, because they change
+slowly with the configuration.
 """
 
 from __future__ import annotations
@@ -13,11 +14,10 @@ import math
 import numpy as np
 import pinocchio as pin
 
-from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
-from lightrocks.adapters.vec import symmetrize_upper
+from lightrocks.adapters.arm import SLOW_EVERY, ArmState
+from lightrocks.adapters.robot_model import ARM_DOF, NV
 
 DT = 0.001
-SLOW_EVERY = 10
 NULLSPACE_STIFFNESS = 10.0
 """Posture stiffness [Nm/rad] pulling the elbow towards the configuration at command start."""
 NULLSPACE_DAMPING = 2.0
@@ -28,68 +28,6 @@ REACHED_ANGLE = np.deg2rad(0.5)
 REST_LINEAR = 5e-3
 REST_ANGULAR = 0.02
 REST_JOINT = 0.02
-
-_LOWER = np.tril_indices(ARM_DOF, -1)
-
-
-class ArmState:
-    """Kinematics and dynamics of the robot at the current tick, computed with Pinocchio.
-
-    One ``computeJointJacobians`` (which includes the forward kinematics) per tick serves the
-    TCP and ft placements and the TCP Jacobian; the arrays the hot loop reads are cached here
-    once per tick, because every ``SE3.translation``/``rotation`` access makes a copy.
-    """
-
-    def __init__(self, model: pin.Model) -> None:
-        self.model = model
-        self.data = model.createData()
-        self.tcp_id = model.getFrameId(TCP_SITE)
-        self.ft_id = model.getFrameId(FT_SITE)
-        self.state = np.zeros(2 * NV)
-        """Joint positions then velocities, one array so that a matrix can act on both."""
-        self.q = self.state[:NV]
-        self.v = self.state[NV:]
-        self.tcp = self.data.oMf[self.tcp_id]
-        """TCP pose: a reference into ``data`` that every update moves."""
-        self.position = np.zeros(3)
-        """TCP position and rotation, copies of ``tcp``'s."""
-        self.point = (0.0, 0.0, 0.0)
-        """``position`` as floats, for the readers that compute with floats."""
-        self.rotation = np.eye(3)
-        self.ft = self.data.oMf[self.ft_id]
-        """Pose of the wrist force/torque site (a reference into ``data`` as well)."""
-        self.jacobian = np.zeros((6, ARM_DOF))
-        """TCP Jacobian of the arm joints, LOCAL_WORLD_ALIGNED: rows are v, ω in world axes."""
-        self.twist = np.zeros(6)
-        self.bias = np.zeros(ARM_DOF)
-        """Coriolis, centrifugal and gravity torques of the arm joints."""
-        self.mass_inv = np.eye(ARM_DOF)
-        self.mass_diag = np.ones(ARM_DOF)
-        """Replaced (not modified) every SLOW_EVERY ticks, so controllers can cache on identity."""
-        self._tick = 0
-
-    def update(self, q: np.ndarray, v: np.ndarray) -> None:
-        """Recompute everything for joint positions and velocities ``q``, ``v`` (length NV)."""
-        model, data = self.model, self.data
-        self.q[:] = q
-        self.v[:] = v
-        pin.computeJointJacobians(model, data, self.q)
-        pin.updateFramePlacement(model, data, self.tcp_id)
-        pin.updateFramePlacement(model, data, self.ft_id)
-        tcp = self.tcp
-        self.position = position = tcp.translation
-        self.point = tuple(position.tolist())
-        self.rotation = tcp.rotation
-        jacobian = pin.getFrameJacobian(model, data, self.tcp_id, pin.LOCAL_WORLD_ALIGNED)
-        self.jacobian = jacobian[:, :ARM_DOF]
-        self.twist = jacobian @ self.v
-        self.bias = pin.nonLinearEffects(model, data, self.q, self.v)[:ARM_DOF]
-        if self._tick % SLOW_EVERY == 0:
-            mass = pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF]
-            mass = symmetrize_upper(mass.copy(), _LOWER)
-            self.mass_inv = np.linalg.inv(mass)
-            self.mass_diag = np.diag(mass).copy()
-        self._tick += 1
 
 
 def _block_rotate(rotation: np.ndarray, matrix: np.ndarray) -> np.ndarray:

@@ -16,14 +16,14 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 
-from lightrocks.adapters.control import DT, ArmState, CartesianImpedance, JointImpedance
+from lightrocks.adapters.arm import ArmState
+from lightrocks.adapters.control import DT, CartesianImpedance, JointImpedance
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     FT_SITE,
     HAND_BODY,
     READY_Q,
     ROBOT_ROOT,
-    load_robot,
 )
 from lightrocks.adapters.scene_registry import objects
 from lightrocks.adapters.sensing import WristSensor
@@ -54,13 +54,15 @@ GRIPPER_EMPTY_WIDTH = 2e-3
 class Plant(Protocol):
     """The physics under the device layer, stepped at 1 kHz.
 
-    ``q``/``v`` are the NV robot joint positions and velocities (arm, then fingers).
+    ``q``/``v`` are the NV robot joint positions and velocities (arm, then fingers); ``arm``
+    is the robot's kinematics and dynamics, which the cell updates after every step.
     ``model``/``data`` are the MuJoCo scene, used for ground truth and rendering; a plant that
     does not simulate with MuJoCo keeps ``data`` in sync on ``sync()``.
     """
 
     q: np.ndarray
     v: np.ndarray
+    arm: ArmState
     model: mujoco.MjModel
     data: mujoco.MjData
 
@@ -185,7 +187,7 @@ class RobotView:
 
     @property
     def tcp(self) -> pin.SE3:
-        return pin.SE3(self._cell.arm.tcp)
+        return self._cell.arm.tcp
 
     @property
     def wrench(self) -> Wrench:
@@ -297,7 +299,7 @@ class SimulatedCell:
         self.recorder = None if video is None else VideoRecorder(video, self.plant.model)
         self.video_written = ""
         """Where the video's frames went, once the cell is closed."""
-        self.arm = ArmState(load_robot())
+        self.arm = self.plant.arm
         self.wrist = self._make_wrist_sensor()
         self.time = 0.0
         self.grip = -OPEN_FORCE
@@ -433,7 +435,7 @@ class SimulatedCell:
 
     def tare(self) -> None:
         """Zero the wrist sensor: call only when the tool touches nothing."""
-        self.wrist.tare(self.plant.wrist(), self.arm.ft)
+        self.wrist.tare(self.plant.wrist(), self.arm.ft_rotation)
 
     # -- commands: each starts its command and returns (settled?, value) ------------------------
 
@@ -500,8 +502,8 @@ class SimulatedCell:
     def _sense(self) -> None:
         """Update kinematics and sensors from the plant state."""
         arm = self.arm
-        arm.update(self.plant.q, self.plant.v)
-        self.wrist.update(self.plant.wrist(), arm.ft, arm.point)
+        arm.update()
+        self.wrist.update(self.plant.wrist(), arm.ft_rotation, arm.ft_position, arm.point)
         self.wrench_value = None
         fx, fy, fz = self.wrist.values[:3]
         self.peak_force = max(self.peak_force, math.sqrt(fx * fx + fy * fy + fz * fz))

@@ -17,7 +17,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-import pinocchio as pin
 
 from lightrocks.adapters.control import DT
 from lightrocks.adapters.vec import cross
@@ -43,7 +42,13 @@ class WristSensor:
         self._alpha = DT / (tau + DT)
         self._weight = tuple(self.load_weight.tolist())
 
-    def update(self, raw: np.ndarray, ft: pin.SE3, tcp_position: Sequence[float]) -> None:
+    def update(
+        self,
+        raw: np.ndarray,
+        ft_rotation: np.ndarray,
+        ft_position: np.ndarray,
+        tcp_position: Sequence[float],
+    ) -> None:
         """Feed one raw reading (see module docstring) with the ft site pose and TCP position.
 
         Plain float arithmetic, the same operations in the same order as their NumPy form:
@@ -51,13 +56,13 @@ class WristSensor:
         """
         rx, ry, rz, sx, sy, sz = raw.tolist()
         ox, oy, oz, px, py, pz = self._offset
-        lx, ly, lz = (ft.rotation @ self.load_com).tolist()
+        lx, ly, lz = (ft_rotation @ self.load_com).tolist()
         wx, wy, wz = self._weight
         fx, fy, fz = -rx - ox - wx, -ry - oy - wy, -rz - oz - wz
         tx = -sx - px - (ly * wz - lz * wy)
         ty = -sy - py - (lz * wx - lx * wz)
         tz = -sz - pz - (lx * wy - ly * wx)
-        (ax, ay, az), (bx, by, bz) = ft.translation.tolist(), tcp_position
+        (ax, ay, az), (bx, by, bz) = ft_position.tolist(), tcp_position
         dx, dy, dz = ax - bx, ay - by, az - bz
         tx += dy * fz - dz * fy
         ty += dz * fx - dx * fz
@@ -74,9 +79,9 @@ class WristSensor:
         )
         self.wrench[:] = values
 
-    def tare(self, raw: np.ndarray, ft: pin.SE3) -> None:
+    def tare(self, raw: np.ndarray, ft_rotation: np.ndarray) -> None:
         """Declare the tool free: the current residual becomes the zero of the sensor."""
-        lever = ft.rotation @ self.load_com
+        lever = ft_rotation @ self.load_com
         residual = -raw
         residual[:3] -= self.load_weight
         residual[3:] -= cross(lever, self.load_weight)

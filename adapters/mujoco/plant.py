@@ -1,4 +1,9 @@
-"""MuJoCo physics under the device layer: one ``mj_step`` per 1 kHz control tick."""
+"""MuJoCo physics under the device layer: one MuJoCo step per 1 kHz control tick.
+
+The step runs in its two halves, ``mj_step2`` with the tick's torques and then ``mj_step1`` of
+the next step, so that between ticks the data holds the kinematics and dynamics of the state
+just reached (for ``MujocoArm``). For the Euler integrator the halves are exactly ``mj_step``.
+"""
 
 from __future__ import annotations
 
@@ -8,7 +13,9 @@ import mujoco
 import numpy as np
 
 from lightrocks.adapters import scene_hooks
+from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.control import DT
+from lightrocks.adapters.mujoco.arm import MujocoArm
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -59,6 +66,9 @@ class MujocoPlant:
         self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
+        self.arm: ArmState = MujocoArm(self.model, self.data, qa, va)
+        self._read_wrist()
+        self._begin_step()
 
     def step(self, tau: np.ndarray, grip: float) -> None:
         """Arm torques straight to the motors; each finger pushes with the grip force.
@@ -68,14 +78,24 @@ class MujocoPlant:
         """
         self._arm_ctrl[:] = tau
         self._finger_ctrl[:] = finger_push(grip, self._fingers.tolist(), 0.0)
+        mujoco.mj_step2(self.model, self.data)
+        self._read_wrist()
+        self._begin_step()
+
+    def _begin_step(self) -> None:
+        """The scene's hook, then the first half of the next step."""
         if self._scene_step is not None:
             self._scene_step(self.model, self.data)
-        mujoco.mj_step(self.model, self.data)
+        mujoco.mj_step1(self.model, self.data)
+
+    def _read_wrist(self) -> None:
+        """Rotate the force/torque sensors into world axes with the site pose they were
+        computed at, before ``mj_step1`` moves it."""
+        np.matmul(self._site_wrench, self._site_rotation.T, out=self._raw_rows)
 
     def wrist(self) -> np.ndarray:
-        """The force/torque sensors (site frame) rotated into world axes (the array is
-        reused: valid until the next step)."""
-        np.matmul(self._site_wrench, self._site_rotation.T, out=self._raw_rows)
+        """The force/torque sensors (site frame) in world axes (the array is reused: valid
+        until the next step)."""
         return self._raw
 
     def sync(self) -> None:

@@ -24,6 +24,7 @@ import numpy as np
 import pinocchio as pin
 
 from lightrocks.adapters import scene_hooks
+from lightrocks.adapters.arm import ArmState, PinocchioArm
 from lightrocks.adapters.control import DT
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
@@ -70,11 +71,12 @@ class PinocchioPlant:
         self._generalized = np.zeros(NV)
         self.robot = load_robot()
         self.robot_data = self.robot.createData()
+        self.q = np.concatenate((READY_Q, [FINGER_TRAVEL, FINGER_TRAVEL]))
+        self.v = np.zeros(NV)
+        self.arm: ArmState = PinocchioArm(self.robot, self.q, self.v)
         fingers = [self.robot.getJointId(name) for name in FINGER_JOINTS]
         self._arm = pin.buildReducedModel(self.robot, fingers, pin.neutral(self.robot))
         self._arm_data = self._arm.createData()
-        self.q = np.concatenate((READY_Q, [FINGER_TRAVEL, FINGER_TRAVEL]))
-        self.v = np.zeros(NV)
         self._arm_q, self._arm_v = self.q[:ARM_DOF], self.v[:ARM_DOF]
         self._arm_generalized = self._generalized[:ARM_DOF]
         """Views made once: a view costs a NumPy call too."""

@@ -58,7 +58,7 @@ def _split(items: str) -> list[str]:
     parts, depth, current, quoted = [], 0, "", False
     for character in items:
         quoted = quoted != (character == "'")
-        depth += 0 if quoted else {"[": 1, "]": -1}.get(character, 0)
+        depth += 0 if quoted else {"[": 1, "]": -1, "(": 1, ")": -1}.get(character, 0)
         if character == "," and depth == 0 and not quoted:
             parts.append(current.strip())
             current = ""
@@ -67,12 +67,19 @@ def _split(items: str) -> list[str]:
     return [*parts, current.strip()] if current.strip() else parts
 
 
-def _value(parent: ET.Element, tag: str, literal: str) -> None:
-    holder = _add(parent, tag)
+def _value(parent: ET.Element, tag: str, literal: str, **attributes: str) -> None:
+    """An ST initial value as a PLCopen value: ``[…]`` an array, ``(member := …, …)`` a
+    structure, anything else a simple value."""
+    holder = _add(parent, tag, **attributes)
     if literal.startswith("["):
         array = _add(holder, "arrayValue")
         for item in _split(literal[1:-1]):
-            _add(_add(array, "value"), "simpleValue", value=item)
+            _value(array, "value", item)
+    elif literal.startswith("("):
+        structure = _add(holder, "structValue")
+        for item in _split(literal[1:-1]):
+            member, _, value = item.partition(":=")
+            _value(structure, "value", value.strip(), member=member.strip())
     else:
         _add(holder, "simpleValue", value=literal)
 

@@ -119,6 +119,23 @@ def python_type(t: Type | None) -> str:
     return "Any"
 
 
+def zero_value(t: Type | None) -> str | None:
+    """What an attribute without default starts as: zero, false or empty, as a PLC
+    variable starts; None for a type without such a value."""
+    if isinstance(t, QuantityT):
+        return "0" if t.name == "Integer" else "0.0"
+    if t == BOOLEAN:
+        return "False"
+    if t == STRING:
+        return "''"
+    if t == FRAME:
+        return "rt.Frame.Identity()"
+    if isinstance(t, VectorT):
+        elements = [zero_value(e) for e in t.elements]
+        return None if None in elements else "(" + "".join(f"{e}, " for e in elements) + ")"
+    return None
+
+
 def value_type(t: Type | None) -> tuple:
     """What a run parameter of model type ``t`` accepts, as plain data for the generated
     class (``PARAMETER_TYPES``): kind, type name, and the dimension exponents of its
@@ -670,12 +687,15 @@ def _cell_view(builder: Builder, symbol) -> dict:
     )
     objects = []
     for obj in cell.objects:
-        attributes = ", ".join(
-            f"{identifier(a.name)!r}: {builder._expr(a.default, scope)}"
-            for a in obj.attributes
-            if a.default is not None
-        )
-        objects.append(f"{identifier(obj.name)!r}: {{{attributes}}}")
+        values = []
+        for a in obj.attributes:
+            if a.default is not None:
+                value = builder._expr(a.default, scope)
+            else:
+                value = zero_value(builder.typing.types.resolve(symbol.loaded, a.type))
+            if value is not None:
+                values.append(f"{identifier(a.name)!r}: {value}")
+        objects.append(f"{identifier(obj.name)!r}: {{{', '.join(values)}}}")
     return {
         "name": identifier(cell.name),
         "qualified": _safe(symbol.qualified_name),

@@ -197,13 +197,22 @@ class UnitBuilder:
                     block = self.device_block(device_type)
                     self.cell_members[device.name] = Variable(device.name, block.name)
             for obj in cell.objects:
-                self.cell_members.setdefault(obj.name, Variable(obj.name, "SceneObject"))
+                if obj.name in self.cell_members:
+                    continue
+                member = self.cell_members[obj.name] = Variable(obj.name, "SceneObject")
+                defaults = []
                 for attribute in obj.attributes:
                     attribute_type = self.typing.types.resolve(loaded, attribute.type)
-                    self.object_fields.setdefault(
+                    field_variable = self.object_fields.setdefault(
                         attribute.name,
                         Variable(self.globals.field(attribute.name), self.st_type(attribute_type)),
                     )
+                    if attribute.default is not None:
+                        what = f"'{obj.name}.{attribute.name}'"
+                        value = _initial(attribute.default, attribute_type, what)
+                        defaults.append(f"{field_variable.name} := {value}")
+                if defaults:
+                    member.initial = f"({', '.join(defaults)})"
         for member in self.cell_members.values():
             member.name = self.globals.claim(member.name)
 
@@ -441,7 +450,8 @@ class ComponentBuilder:
             if isinstance(declared, ObjectT):
                 block.in_outs.append(variable)
             else:
-                variable.initial = literal(parameter.default, declared) if parameter.default else ""
+                what = f"'{parameter.name}' of {self.component.qualified_name}"
+                variable.initial = _initial(parameter.default, declared, what)
                 block.inputs.append(variable)
         self.scope.names.update(block.parameters)
         for outcome in ("done", "error", *region.outcomes):
@@ -1309,3 +1319,15 @@ def _conjunction(conditions: list[str]) -> str:
     if len(parts) == 1:
         return parts[0]
     return " AND ".join(_group(p) for p in parts)
+
+
+def _initial(default: ast.Expression | None, declared: Type | None, what: str) -> str:
+    """A declaration's initial value: the default folded to a constant ("" without one)."""
+    if default is None:
+        return ""
+    initial = literal(default, declared)
+    if initial is None:
+        raise GenerationError(
+            f"{default.position}: the SFC target needs a constant default for {what}"
+        )
+    return initial

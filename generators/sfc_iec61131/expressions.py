@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from lightrocks.languages.domain.types import FRAME, NUMBER, DeviceT, QuantityT, Type, VectorT
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.constants import Value, fold
 from lightrocks.workbench.generators import GenerationError
 
 OPERATORS = {"&&": "AND", "||": "OR", "==": "=", "!=": "<>"}  # "%": see _modulo
@@ -89,28 +90,29 @@ def convert(text: str, have: str | None, want: str | None, position: ast.Positio
 
 
 def literal(expression: ast.Expression, declared: Type | None = None) -> str | None:
-    """The ST text of a constant (usable as an initial value), or None if not constant;
-    a number is written as the ST type of ``declared`` when given."""
-    match expression:
-        case ast.Quantity(value=value):
-            have = DINT if expression.integral else REAL
+    """The ST text of a constant expression (usable as an initial value), folded as the
+    runtime computes it, or None if not constant; a number is written as the ST type of
+    ``declared`` when given."""
+    return _literal_of(fold(expression), declared, expression.position)
+
+
+def _literal_of(value: Value | None, declared: Type | None, position: ast.Position) -> str | None:
+    match value:
+        case bool():
+            return "TRUE" if value else "FALSE"
+        case str():
+            return string_literal(value)
+        case tuple():
+            element = _element(declared)
+            return "[" + ", ".join(_literal_of(v, element, position) for v in value) + "]"
+        case int() | float():
+            have = DINT if isinstance(value, int) else REAL
             want = number_type(declared) or have
             if want == DINT and float(value).is_integer():
                 return str(int(value))
             if want == REAL:
                 return real(value)
-            return convert(real(value), have, want, expression.position)
-        case ast.BooleanLiteral(value=value):
-            return "TRUE" if value else "FALSE"
-        case ast.StringLiteral(value=value):
-            return string_literal(value)
-        case ast.Unary(operator="-", operand=operand):
-            inner = literal(operand, declared)
-            return None if inner is None else (inner[1:] if inner[0] == "-" else f"-{inner}")
-        case ast.VectorLiteral(elements=elements):
-            element = _element(declared)
-            parts = [literal(e, element) for e in elements]
-            return None if None in parts else "[" + ", ".join(parts) + "]"
+            return convert(real(value), have, want, position)
     return None
 
 

@@ -112,12 +112,13 @@ def command_defaults_fit(context: object) -> Iterator[Finding]:
                 continue
             for value in (parameter.default, parameter.low, parameter.high):
                 actual = _literal_type(value)
-                if actual is not None and not _fits(declared, actual):
+                if actual is None:
+                    continue
+                if not _fits(declared, actual):
                     yield value.position, f"'{parameter.name}' expects {describe(declared)}", ""
-            default = _literal_type(parameter.default)
-            if default is not None and _fits(declared, default) and narrows(declared, default):
-                message = f"'{parameter.name}' expects {describe(declared)}, not a Real value"
-                yield parameter.default.position, message, ""
+                elif narrows(declared, actual):
+                    message = f"'{parameter.name}' expects {describe(declared)}, not a Real value"
+                    yield value.position, message, ""
 
 
 @coco("LR0405", Severity.ERROR, "a command default lies in the command's own safe range")

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import TypeVar
 
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.constants import fold
 from lightrocks.metamodel.units import UnitError, lookup
 
 T = TypeVar("T")
@@ -54,35 +55,13 @@ class Range:
 
 
 def constant_values(expression: ast.Expression | None) -> list[float] | None:
-    """The SI numbers of a constant expression (literals, signs, + - * /, vectors); None else."""
-    match expression:
-        case ast.Quantity():
-            return [expression.value]
-        case ast.Unary(operator="-"):
-            inner = constant_values(expression.operand)
-            return None if inner is None else [-n for n in inner]
-        case ast.VectorLiteral():
-            parts = [constant_values(e) for e in expression.elements]
-            if any(p is None or len(p) != 1 for p in parts):
-                return None
-            return [p[0] for p in parts]
-        case ast.Binary(operator=operator) if operator in "+-*/":
-            left, right = constant_values(expression.left), constant_values(expression.right)
-            if left is None or right is None or len(left) != 1 or len(right) != 1:
-                return None
-            if operator == "/" and right[0] == 0:
-                return None
-            result = _apply(operator, left[0], right[0])
-            return [result] if math.isfinite(result) else None
+    """The SI numbers of a constant expression (a number or a vector of numbers); None else."""
+    value = fold(expression)
+    if isinstance(value, tuple):
+        return [float(v) for v in value]
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return [float(value)]
     return None
-
-
-def _apply(operator: str, left: float, right: float) -> float:
-    if operator == "+":
-        return left + right
-    if operator == "-":
-        return left - right
-    return left * right if operator == "*" else left / right
 
 
 def _bound(expression: ast.Expression | None) -> list[tuple[float | None, str, float]]:

@@ -71,6 +71,9 @@ class Typing:
             for region in component.region.regions():
                 if region.loaded is component.loaded:
                     self._region(component, region)
+        for loaded in models.workspace.checked_units():
+            if isinstance(loaded.unit, ast.DomainUnit):
+                self._object_defaults(loaded)
 
     def report(self, code: str, position: ast.Position, message: str, hint: str = "") -> None:
         self.findings[code].append((position, message, hint))
@@ -104,6 +107,20 @@ class Typing:
             )
             members[obj.name] = ObjectT(obj.name, (("pose", FRAME), *attributes))
         return members
+
+    def _object_defaults(self, loaded: Loaded) -> None:
+        """A scene object's attribute defaults are constants of the attribute's type: they
+        initialise the environment model before any component runs."""
+        env: dict[str, Type] = {name: FunctionT(name) for name in BUILTIN_FUNCTIONS}
+        for declaration in loaded.unit.declarations:
+            if not isinstance(declaration, ast.Cell):
+                continue
+            for obj in declaration.objects:
+                for attribute in obj.attributes:
+                    declared = self.types.resolve(loaded, attribute.type)
+                    if declared is not None and attribute.default is not None:
+                        what = f"default of '{obj.name}.{attribute.name}'"
+                        self.expect(attribute.default, declared, env, what)
 
     # -- regions --------------------------------------------------------------------------
 

@@ -259,3 +259,16 @@ def test_a_real_default_of_an_integer_command_parameter_is_lr0404(tmp_path: Path
     assert (diagnostic.code, Path(diagnostic.file).name) == ("LR0404", "Bench.lrd")
     assert (diagnostic.line, diagnostic.column) == (line, column)
     assert diagnostic.message == "'rounds' expects Integer, not a Real value"
+
+
+@pytest.mark.parametrize("bounds", ["in @@0.5 .. 10", "in 0 .. @@9.5"])
+def test_a_real_safe_range_bound_of_an_integer_command_parameter_is_lr0404(
+    tmp_path: Path, bounds: str
+) -> None:
+    model_set(tmp_path)
+    domain = DOMAIN.replace("Integer rounds = 2,", f"Integer rounds = 2 {bounds},")
+    _, (line, column) = write(tmp_path, "Bench.lrd", domain)
+    context = check([tmp_path / "t"], [tmp_path])
+    [diagnostic] = context.diagnostics.items
+    assert (diagnostic.code, diagnostic.line, diagnostic.column) == ("LR0404", line, column)
+    assert diagnostic.message == "'rounds' expects Integer, not a Real value"

@@ -149,3 +149,20 @@ def test_regions_are_simultaneous_divergence_and_convergence(schema: etree.XMLSc
         NS,
     )
     assert fork.find(".//p:inline", NS).get("name") == "PressOn_fork_to_regions"
+
+
+def test_defaults_are_initial_values_of_their_structure(schema: etree.XMLSchema) -> None:
+    """A scene object's attribute defaults become a ``structValue`` of its global, a
+    parameter's folded default the ``simpleValue`` of its input."""
+    root = _parse(generate("plcopen", [PLANT / "Stock.lr"], search=[PLANT.parent])["Stock.xml"])
+    assert schema.validate(root), schema.error_log
+    [variable] = root.findall(".//p:globalVars/p:variable[@name='bin']", NS)
+    members = {
+        value.get("member"): value.find("p:simpleValue", NS).get("value")
+        for value in variable.findall("p:initialValue/p:structValue/p:value", NS)
+    }
+    assert members == {"items": "5", "width": "0.012", "open": "TRUE"}
+    root = _parse(generate("plcopen", [PLANT / "Dial.lr"], search=[PLANT.parent])["Dial.xml"])
+    assert schema.validate(root), schema.error_log
+    [share] = root.findall(".//p:pou[@name='Dial']//p:inputVars/p:variable[@name='share']", NS)
+    assert share.find("p:initialValue/p:simpleValue", NS).get("value") == "3.5"

@@ -150,7 +150,7 @@ def test_an_integer_that_meets_a_real_becomes_real(tmp_path, entry: str, found: 
 def test_integer_division_is_true_division_as_at_run_time(tmp_path) -> None:
     text = _mix(tmp_path, "Real ratio = 0;", "ratio = count / 2; ratio = 7 / 2;")
     assert "ratio := DINT_TO_REAL(count) / 2.0;" in text
-    assert "ratio := 7.0 / 2.0;" in text
+    assert "ratio := 3.5;" in text  # a constant is folded as the runtime computes it
 
 
 def test_the_remainder_is_floored_as_at_run_time(tmp_path) -> None:

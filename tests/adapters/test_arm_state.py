@@ -1,0 +1,74 @@
+"""The MuJoCo plant's arm state, read from MuJoCo's step, equals the one Pinocchio computes.
+
+The MuJoCo plant does not recompute kinematics and dynamics: it runs each step in two halves
+so that MuJoCo has already computed them for the state just reached. These tests pin both
+halves of that claim: the values agree with Pinocchio's for the same joint state, also after
+steps (so they describe the state reached, not the one before), and in a scene whose robot
+joints do not start at address 0.
+"""
+
+import numpy as np
+import pytest
+
+from lightrocks.adapters.arm import SLOW_EVERY, PinocchioArm
+from lightrocks.adapters.mujoco.plant import MujocoPlant
+from lightrocks.adapters.robot_model import ARM_DOF, NV, load_robot
+
+TOLERANCE = 1e-9
+FIELDS = ("q", "v", "position", "rotation", "ft_position", "ft_rotation", "jacobian", "twist")
+
+
+def _twin_of(plant: MujocoPlant) -> PinocchioArm:
+    """A Pinocchio arm state that reads the MuJoCo plant's joint arrays."""
+    return PinocchioArm(load_robot(), plant.q, plant.v)
+
+
+def _assert_same(mujoco_arm, pinocchio_arm) -> None:
+    for name in FIELDS:
+        mine, theirs = getattr(mujoco_arm, name), getattr(pinocchio_arm, name)
+        assert np.allclose(mine, theirs, atol=TOLERANCE), name
+    assert np.allclose(mujoco_arm.bias, pinocchio_arm.bias, atol=TOLERANCE)
+    assert np.allclose(mujoco_arm.mass_inv, pinocchio_arm.mass_inv, atol=TOLERANCE)
+    assert mujoco_arm.point == pytest.approx(pinocchio_arm.point, abs=TOLERANCE)
+    tcp, twin_tcp = mujoco_arm.tcp, pinocchio_arm.tcp
+    assert np.allclose(tcp.homogeneous, twin_tcp.homogeneous, atol=TOLERANCE)
+
+
+@pytest.mark.parametrize("scene", ["empty", "screwing"])
+def test_arm_states_agree_while_stepping(scene: str) -> None:
+    plant = MujocoPlant(scene)
+    twin = _twin_of(plant)
+    rng = np.random.default_rng(11)
+    for _ in range(2 * SLOW_EVERY + 3):
+        plant.step(rng.normal(0.0, 20.0, ARM_DOF), grip=10.0)
+        plant.arm.update()
+        twin.update()
+        _assert_same(plant.arm, twin)
+    assert np.any(plant.v != 0.0)
+
+
+def test_the_arm_state_describes_the_state_reached_by_the_step() -> None:
+    plant = MujocoPlant("empty")
+    plant.step(np.full(ARM_DOF, 30.0), grip=0.0)
+    plant.arm.update()
+    before = plant.arm.position.copy()
+    plant.step(np.full(ARM_DOF, 30.0), grip=0.0)
+    plant.arm.update()
+    twin = _twin_of(plant)
+    twin.update()
+    assert not np.allclose(before, plant.arm.position, atol=1e-12)
+    assert np.allclose(plant.arm.position, twin.position, atol=TOLERANCE)
+
+
+def test_arm_states_agree_on_random_configurations() -> None:
+    plant = MujocoPlant("screwing")
+    twin = _twin_of(plant)
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        plant.q[:ARM_DOF] = rng.uniform(-2.0, 2.0, ARM_DOF)
+        plant.v[:] = rng.normal(size=NV)
+        plant.step(np.zeros(ARM_DOF), grip=0.0)
+        for _ in range(SLOW_EVERY):  # a fresh mass matrix for the new configuration
+            plant.arm.update()
+            twin.update()
+        _assert_same(plant.arm, twin)
