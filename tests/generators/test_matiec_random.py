@@ -28,7 +28,7 @@ from lightrocks.workbench.app.run import drive
 from lightrocks.workbench.generators import GenerationError
 
 CHARTS = 6
-SWEEP = 60
+SWEEP = 120
 SEQUENCES = 3
 LENGTH = 8
 PASSING = (f"+{round(TICK * 1000)}ms", f"+{round(TICK * 2000)}ms")
