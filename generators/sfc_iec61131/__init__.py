@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 from collections import Counter
 from pathlib import Path
 
@@ -19,14 +20,16 @@ TEMPLATES = Path(__file__).parent / "templates"
 
 
 def prioritize(unit: Unit) -> None:
-    """Number the branches of every selective divergence: MatIEC would run them all."""
+    """Number the branches of every selective divergence (MatIEC would run them all), in
+    declaration order across the block: MatIEC tests the transitions of a network sorted by
+    priority and clears a step's flag as soon as one of its transitions fires, so growing
+    numbers keep the tests in declaration order, which the watch of orthogonal regions needs."""
     for block in unit.blocks:
         counts = Counter(t.source for t in block.transitions)
-        given = Counter()
+        numbers = itertools.count(1)
         for transition in block.transitions:
             if counts[transition.source] > 1:
-                given[transition.source] += 1
-                transition.priority = given[transition.source]
+                transition.priority = next(numbers)
 
 
 def build_unit(top: Component, typing: Typing) -> Unit:

@@ -999,7 +999,14 @@ class ComponentBuilder:
         self, node: Node, deep: bool, statements: list[str], condition: list[str]
     ) -> list[Branch]:
         """Enter ``node`` through its history: the child it remembers (deep history: that
-        child through its own history too), else as usual."""
+        child through its own history too), else as usual. When the statements before it
+        record a memory it reads (the transition leaves ``node`` itself), they run in a step
+        of their own, so that the choice of the child reads what they recorded."""
+        read = [node, *(self._all(node.nested) if deep else [])]
+        memories = {f"{self.memories[id(n)]} :=" for n in read if id(n) in self.memories}
+        if any(line.startswith(tuple(memories)) for line in statements):
+            following = self._history(node, deep, [], [])
+            return [Branch(condition, statements, f"{node.name}_history", following=following)]
         memory = self.memories[id(node)]
         lines = statements + self._entry(node)
         branches: list[Branch] = []

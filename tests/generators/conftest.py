@@ -8,9 +8,11 @@ and review the diff.
 from __future__ import annotations
 
 import os
+import shutil
 from pathlib import Path
 
 import pytest
+from plc import matiec_home
 
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import GenerationRequest, load_generator
@@ -43,3 +45,15 @@ def assert_golden(name: str, text: str) -> None:
     if not golden.exists():
         pytest.fail(f"no golden file {golden}; run with LIGHTROCKS_UPDATE_GOLDEN=1")
     assert text == golden.read_text(encoding="utf-8"), f"{name} differs from its golden file"
+
+
+@pytest.fixture(scope="module")
+def home() -> Path:
+    """MatIEC's folder, for the tests it judges; they skip with the reason where it or gcc
+    is absent."""
+    found = matiec_home()
+    if found is None:
+        pytest.skip("MatIEC not found: set MATIEC=<dir> or build it in /opt/matiec")
+    if shutil.which("gcc") is None:
+        pytest.skip("gcc not found")
+    return found

@@ -46,12 +46,24 @@ def iec2c(home: Path, source: Path, out: Path) -> subprocess.CompletedProcess:
 
 
 def gcc(home: Path, out: Path, driver: str, exe: Path) -> subprocess.CompletedProcess:
-    """Compile and link MatIEC's C with a driver (``main``) into ``exe``."""
-    (out / "driver.c").write_text(driver)
-    sources = [out / "driver.c", *(p for p in out.glob("*.c") if p.name not in ("POUS.c",))]
-    sources = list(dict.fromkeys(sources))
+    """Compile and link MatIEC's C with a driver (``main``) into ``exe``. MatIEC's C is
+    compiled once per folder, so that several drivers link against it cheaply."""
     command = ["gcc", "-w", "-O0", "-I", str(home / "lib" / "C"), "-I", str(out)]
-    command += [str(s) for s in sources] + ["-lm", "-o", str(exe)]
+    objects = []
+    for source in sorted(out.glob("*.c")):
+        if source.name in ("POUS.c", "driver.c"):
+            continue
+        compiled = source.with_suffix(".o")
+        if not compiled.exists():
+            done = subprocess.run(
+                [*command, "-c", str(source), "-o", str(compiled)],
+                capture_output=True, text=True, timeout=300, check=False,
+            )  # fmt: skip
+            if done.returncode != 0:
+                return done
+        objects.append(str(compiled))
+    (out / "driver.c").write_text(driver)
+    command += [str(out / "driver.c"), *objects, "-lm", "-o", str(exe)]
     return subprocess.run(command, capture_output=True, text=True, timeout=300, check=False)
 
 

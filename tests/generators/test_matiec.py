@@ -8,7 +8,6 @@ with the reason where they are absent.
 from __future__ import annotations
 
 import os
-import shutil
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -20,7 +19,6 @@ from plc import (
     driver_source,
     gcc,
     iec2c,
-    matiec_home,
     python_trace,
     sfc_trace,
     streams,
@@ -113,6 +111,10 @@ CONSTRUCTS = [
          "keep,hold,add,add,take,quit"),
         ("an event entering a region is taken once", "Tally",
          "hold,add,take,hold,add,add,take"),
+        ("an event a region takes is not taken around it", "Shuttle",
+         "move,toggle,move,toggle,toggle,move,quit"),
+        ("history of the state a transition leaves", "Rewind",
+         "next,again,back,again,next,again,quit"),
     ]
 ] + [
     # Regions of a task: the arm snaps a terminal while the camera looks ahead. Only faults
@@ -122,16 +124,6 @@ CONSTRUCTS = [
     Scenario("ahead look-ahead timeout", AHEAD_TASK, {"camera.localize": [None, None, "timeout"]}),
     Scenario("ahead snap fault", AHEAD_TASK, {"robot.moveCartesian": [None] * 5 + ["error"]}),
 ]  # fmt: skip
-
-
-@pytest.fixture(scope="module")
-def home() -> Path:
-    found = matiec_home()
-    if found is None:
-        pytest.skip("MatIEC not found: set MATIEC=<dir> or build it in /opt/matiec")
-    if shutil.which("gcc") is None:
-        pytest.skip("gcc not found")
-    return found
 
 
 def _unit(model: Path, search: list[Path] = SEARCH):
