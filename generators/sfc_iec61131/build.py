@@ -197,9 +197,8 @@ class UnitBuilder:
                     block = self.device_block(device_type)
                     self.cell_members[device.name] = Variable(device.name, block.name)
             for obj in cell.objects:
-                if obj.name in self.cell_members:
-                    continue
-                member = self.cell_members[obj.name] = Variable(obj.name, "SceneObject")
+                first = obj.name not in self.cell_members  # its defaults initialise it
+                member = self.cell_members.setdefault(obj.name, Variable(obj.name, "SceneObject"))
                 defaults = []
                 for attribute in obj.attributes:
                     attribute_type = self.typing.types.resolve(loaded, attribute.type)
@@ -207,7 +206,7 @@ class UnitBuilder:
                         attribute.name,
                         Variable(self.globals.field(attribute.name), self.st_type(attribute_type)),
                     )
-                    if attribute.default is not None:
+                    if first and attribute.default is not None:
                         what = f"'{obj.name}.{attribute.name}'"
                         value = _initial(attribute.default, attribute_type, what)
                         defaults.append(f"{field_variable.name} := {value}")

@@ -164,7 +164,7 @@ class Scope:
             text = self._text(expression)
             return convert(text, have, want, expression.position), False
         text = self._text(expression)
-        return text, isinstance(expression, ast.Binary | ast.Unary)
+        return text, isinstance(expression, ast.Binary | ast.Unary) or text.startswith("-")
 
     def _text(self, expression: ast.Expression) -> str:
         constant = literal(expression)

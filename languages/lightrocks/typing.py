@@ -47,6 +47,8 @@ from lightrocks.workbench.workspace import Loaded
 
 DURATION = QuantityT("Duration", lookup("s").dimension)
 Finding = tuple[ast.Position, str, str]
+_BUILTINS: dict[str, Type] = {name: FunctionT(name) for name in BUILTIN_FUNCTIONS}
+"""The names every expression may use; scopes add theirs to a copy."""
 
 
 @dataclass
@@ -81,7 +83,7 @@ class Typing:
     # -- scopes ---------------------------------------------------------------------------
 
     def environment(self, region: Region) -> dict[str, Type]:
-        env: dict[str, Type] = {name: FunctionT(name) for name in BUILTIN_FUNCTIONS}
+        env = dict(_BUILTINS)
         workspace = self.models.workspace
         for symbol in workspace.scope(region.loaded).values():
             if isinstance(symbol.node, ast.Cell):
@@ -111,7 +113,6 @@ class Typing:
     def _object_defaults(self, loaded: Loaded) -> None:
         """A scene object's attribute defaults are constants of the attribute's type: they
         initialise the environment model before any component runs."""
-        env: dict[str, Type] = {name: FunctionT(name) for name in BUILTIN_FUNCTIONS}
         for declaration in loaded.unit.declarations:
             if not isinstance(declaration, ast.Cell):
                 continue
@@ -120,7 +121,7 @@ class Typing:
                     declared = self.types.resolve(loaded, attribute.type)
                     if declared is not None and attribute.default is not None:
                         what = f"default of '{obj.name}.{attribute.name}'"
-                        self.expect(attribute.default, declared, env, what)
+                        self.expect(attribute.default, declared, _BUILTINS, what)
 
     # -- regions --------------------------------------------------------------------------
 

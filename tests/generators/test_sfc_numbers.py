@@ -88,6 +88,7 @@ ASSIGNMENTS = [
     ),
     ("ratio = v[ratio] + v[count];", "ratio := v[TRUNC(ratio)] + v[count];"),
     ("count = count * 2 + 1;", "count := (count * 2) + 1;"),
+    ("count = count - min(-3, 2);", "count := count - (-3);"),
 ]
 GUARDS = [
     ("[count * 2 mm > x]", "(DINT_TO_REAL(count) * 0.002) > x"),

@@ -124,6 +124,8 @@ LATE = """package d;
 statechart Late {
   parameters {
     Integer n = 0;
+    Integer m = 0;
+    Integer k = 0;
   }
 
   initial state Outer {

@@ -22,6 +22,7 @@ from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from statecharts.random_charts import TICK, VARIABLES, random_chart
 from statecharts.sismic_chart import Reference, to_sismic
+from statecharts.test_constructs import LATE
 
 CHARTS = 40
 SWEEP = 400
@@ -202,29 +203,6 @@ def test_only_sismic_resting_in_that_choice_makes_the_difference_documented(buil
     assert mine[-1] == ((), None)
     assert _no_branch_holds(chart, mine[-1], theirs(PICK, ["go"])[1][-1])
     assert not _no_branch_holds(chart, mine[-1], theirs(PICK, ["bump", "go"])[1][-1])
-
-
-LATE = """package d;
-
-statechart Late {
-  parameters {
-    Integer n = 0;
-    Integer m = 0;
-    Integer k = 0;
-  }
-
-  initial state Outer {
-    initial state Wait;
-    state Done;
-    choice Which;
-    Wait -> Which after(500 ms);
-    Which -> Done [n == 1];
-  }
-  state Away;
-
-  Outer -> Away after(500 ms);
-}
-"""
 
 
 def test_a_choice_left_by_an_enclosing_time_event_is_the_same_difference(build) -> None:
