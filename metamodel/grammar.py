@@ -21,6 +21,8 @@ from pathlib import Path
 
 from textx import TextXSyntaxError, metamodel_from_str
 
+from lightrocks.metamodel.objects import ObjectBuilder, eligible
+
 FRAGMENTS = Path(__file__).parent
 
 
@@ -89,6 +91,11 @@ def textx_metamodel(
         return build_metamodel(root, fragments, extensions)
 
 
+@cache
+def _object_builder(metamodel) -> ObjectBuilder | None:
+    return ObjectBuilder(metamodel) if eligible(metamodel) else None
+
+
 def parse(
     root: Path,
     fragments: tuple[str, ...],
@@ -96,10 +103,17 @@ def parse(
     file: str,
     extensions: tuple[GrammarExtension, ...] = (),
 ):
-    """Parse ``text``; raise :class:`SyntaxProblem` with a readable message on mismatch."""
+    """Parse ``text`` into textX model objects; raise :class:`SyntaxProblem` with a readable
+    message on mismatch. The objects come from :mod:`metamodel.objects` where the grammar
+    allows it, else from textX's own builder."""
     metamodel = textx_metamodel(root, fragments, extensions)
+    builder = _object_builder(metamodel)
     try:
-        return metamodel.model_from_str(text, file_name=file)
+        if builder is None:
+            return metamodel.model_from_str(text, file_name=file)
+        parser = metamodel._parser_blueprint.clone()
+        parser.parse(text, file_name=file)
+        return builder.build(parser.parse_tree[0])
     except TextXSyntaxError as error:
         raise SyntaxProblem(_describe(error), error.line or 1, error.col or 1) from None
 
