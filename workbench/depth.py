@@ -46,10 +46,11 @@ _FIELD_NAMES: dict[type, tuple[str, ...] | None] = {}
 
 
 def _field_names(cls: type) -> tuple[str, ...] | None:
-    """The field names of a dataclass, None for any other class; looked up once per class,
-    as every node of a large model passes here."""
+    """The field names of a dataclass, None for any other class and for positions (which
+    hold no nodes); looked up once per class, as every node of a large model passes here."""
     if cls not in _FIELD_NAMES:
-        _FIELD_NAMES[cls] = tuple(f.name for f in fields(cls)) if is_dataclass(cls) else None
+        nodes = is_dataclass(cls) and cls is not Position
+        _FIELD_NAMES[cls] = tuple(f.name for f in fields(cls)) if nodes else None
     return _FIELD_NAMES[cls]
 
 
