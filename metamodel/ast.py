@@ -10,6 +10,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, fields, is_dataclass
+from functools import cache
 from typing import Any
 
 
@@ -481,6 +482,13 @@ Unit = StatechartUnit | DomainUnit
 def stereotype(stereotypes: tuple[Stereotype, ...], name: str) -> Stereotype | None:
     """The stereotype called ``name``, if present."""
     return next((s for s in stereotypes if s.name == name), None)
+
+
+@cache
+def field_names(cls: type) -> tuple[str, ...]:
+    """The field names of a node class, looked up once per class: the walks over whole
+    models (storing, depth) meet every node of a large model."""
+    return tuple(f.name for f in fields(cls))
 
 
 def walk(node: Any) -> Iterator[Any]:

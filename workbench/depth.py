@@ -6,10 +6,11 @@ than they can walk is refused where it is parsed, with the place that nests deep
 
 from __future__ import annotations
 
-from dataclasses import fields, is_dataclass
+from dataclasses import is_dataclass
+from functools import cache
 from typing import Any
 
-from lightrocks.metamodel.ast import Position
+from lightrocks.metamodel.ast import Position, field_names
 
 MAX_DEPTH = 100
 """Nesting of the syntax tree that later passes (typing, printing, generating) may walk
@@ -42,16 +43,11 @@ def deepest_node(root: Any) -> Position | None:
     return None
 
 
-_FIELD_NAMES: dict[type, tuple[str, ...] | None] = {}
-
-
+@cache
 def _field_names(cls: type) -> tuple[str, ...] | None:
-    """The field names of a dataclass, None for any other class and for positions (which
-    hold no nodes); looked up once per class, as every node of a large model passes here."""
-    if cls not in _FIELD_NAMES:
-        nodes = is_dataclass(cls) and cls is not Position
-        _FIELD_NAMES[cls] = tuple(f.name for f in fields(cls)) if nodes else None
-    return _FIELD_NAMES[cls]
+    """The field names of a node class, None for any other class and for positions (which
+    hold no nodes); decided once per class."""
+    return field_names(cls) if is_dataclass(cls) and cls is not Position else None
 
 
 def deepest(text: str, shown: str) -> Position:

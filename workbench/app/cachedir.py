@@ -32,7 +32,7 @@ def put_json(target: Path, data: Any) -> None:
     handle, staged = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")
     try:
         with os.fdopen(handle, "w", encoding="utf-8") as file:
-            json.dump(data, file, separators=(",", ":"))
+            file.write(json.dumps(data, separators=(",", ":")))  # C encoder: json.dump has none
         os.replace(staged, target)
     except BaseException:
         Path(staged).unlink(missing_ok=True)

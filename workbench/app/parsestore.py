@@ -40,7 +40,9 @@ class DiskStore:
 
     def put(self, key: str, result: ast.Unit | SyntaxProblem) -> None:
         try:
-            put_json(self.folder / key[:2] / key, encode(result))
+            with paused_gc():
+                data = encode(result)
+            put_json(self.folder / key[:2] / key, data)
         except (OSError, ValueError, RecursionError):
             return  # a cache that cannot be written only costs the next run a parse
 
@@ -50,7 +52,7 @@ def encode(value: Any) -> Any:
     if isinstance(value, SyntaxProblem):
         return {"$": PROBLEM, "message": value.message, "line": value.line, "column": value.column}
     if is_dataclass(value):
-        encoded = {f.name: encode(getattr(value, f.name)) for f in fields(value)}
+        encoded = {name: encode(getattr(value, name)) for name in ast.field_names(type(value))}
         return {"$": type(value).__name__, **encoded}
     if isinstance(value, tuple):
         return [encode(item) for item in value]
