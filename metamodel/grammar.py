@@ -12,6 +12,7 @@ names which of them fill which hook; a hook nobody fills matches nothing.
 from __future__ import annotations
 
 import gc
+import re
 import threading
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
@@ -137,7 +138,7 @@ def paused_gc() -> Iterator[None]:
 
 def _describe(error: TextXSyntaxError) -> str:
     rules = [r for r in error.expected_rules or [] if getattr(r, "to_match", None) != "(?!)"]
-    expected = sorted({_rule_text(rule) for rule in rules})
+    expected = sorted({text for rule in rules for text in _rule_texts(rule)})
     found = error.context.split("*")[-1].strip().split()[:1] if error.context else []
     if expected:
         shown = ", ".join(expected[:6]) + (", …" if len(expected) > 6 else "")
@@ -146,12 +147,23 @@ def _describe(error: TextXSyntaxError) -> str:
     return f"syntax error: {error.message}"
 
 
-def _rule_text(rule: object) -> str:
+def _rule_texts(rule: object) -> tuple[str, ...]:
+    """How an expected rule is named in a message; a lookahead on a set of characters (such
+    as ``SuffixStart``, which spares trying each suffix) names each character."""
     text = getattr(rule, "to_match", None)
     if isinstance(text, str) and not getattr(rule, "regex", None):
-        return f"'{text}'"
+        return (f"'{text}'",)
     name = getattr(rule, "rule_name", "") or getattr(rule, "name", "")
-    return _FRIENDLY.get(name, name or str(rule))
+    if name in _FRIENDLY:
+        return (_FRIENDLY[name],)
+    characters = _CHARACTER_SET.fullmatch(text) if isinstance(text, str) else None
+    if characters:
+        return tuple(f"'{c}'" for c in re.sub(r"\\(.)", r"\1", characters[1]))
+    return (name or str(rule),)
+
+
+_CHARACTER_SET = re.compile(r"\[((?:\\.|[^\]^\\])+)\]")
+r"""A regular expression that is one set of plain characters, such as ``[.(\[]``."""
 
 
 _FRIENDLY = {

@@ -57,3 +57,18 @@ def test_a_missing_operand_names_what_may_start_one() -> None:
     assert "a number" in raised.value.message
     assert "a name" in raised.value.message
     assert "RegExMatch" not in raised.value.message
+
+
+@pytest.mark.parametrize("operand", ["x", "x.y", "f(1)", "v[0]"])
+def test_after_an_operand_each_suffix_is_asked_for_by_its_character(operand: str) -> None:
+    with pytest.raises(SyntaxProblem) as raised:
+        guard(f"{operand} y")
+    message = raised.value.message
+    assert "expected '(', '.', '[', ']', an operator but found 'y]'" in message
+    assert "SuffixStart" not in message
+
+
+@pytest.mark.parametrize("call", ["a.b.c", "f(1)(2)", "v[0][1]", "p.f(x)[2].q"])
+def test_suffixes_chain(call: str) -> None:
+    read = guard(call)
+    assert isinstance(read, ast.Member | ast.Call | ast.Index)
