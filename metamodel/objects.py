@@ -45,7 +45,6 @@ class ObjectBuilder:
     def __init__(self, metamodel: Any) -> None:
         self._metamodel = metamodel
         self._plans: dict[int, Plan] = {}
-        self._blanks: dict[type, tuple[dict[str, Any], tuple[str, ...]]] = {}
 
     def build(self, node: Any, parent: Any = None) -> Any:
         """The model object (or plain value) of a parse-tree node."""
@@ -127,10 +126,7 @@ class ObjectBuilder:
     def _blank(self, cls: type) -> tuple[dict[str, Any], tuple[str, ...]]:
         """The initial attributes of a new ``cls`` object, as textX sets them: scalar
         defaults, and the names of the list attributes (each object needs its own lists)."""
-        if cls not in self._blanks:
-            template = cls.__new__(cls)
-            self._metamodel._init_obj_attrs(template)
-            lists = tuple(name for name, attr in cls._tx_attrs.items() if attr.mult in _MANY)
-            scalars = {k: v for k, v in vars(template).items() if k not in lists}
-            self._blanks[cls] = (scalars, lists)
-        return self._blanks[cls]
+        template = cls.__new__(cls)
+        self._metamodel._init_obj_attrs(template)
+        lists = tuple(name for name, attr in cls._tx_attrs.items() if attr.mult in _MANY)
+        return {k: v for k, v in vars(template).items() if k not in lists}, lists
