@@ -22,6 +22,7 @@ from pathlib import Path
 
 from textx import TextXSyntaxError, metamodel_from_str
 
+from lightrocks.metamodel.compiled import compile_parser
 from lightrocks.metamodel.objects import ObjectBuilder, eligible
 
 FRAGMENTS = Path(__file__).parent
@@ -97,6 +98,11 @@ def _object_builder(metamodel) -> ObjectBuilder | None:
     return ObjectBuilder(metamodel) if eligible(metamodel) else None
 
 
+@cache
+def _compiled_parser(metamodel):
+    return compile_parser(metamodel._parser_blueprint)
+
+
 def parse(
     root: Path,
     fragments: tuple[str, ...],
@@ -106,15 +112,21 @@ def parse(
 ):
     """Parse ``text`` into textX model objects; raise :class:`SyntaxProblem` with a readable
     message on mismatch. The objects come from :mod:`metamodel.objects` where the grammar
-    allows it, else from textX's own builder."""
+    allows it, else from textX's own builder; the parse tree comes from the compiled parser
+    (:mod:`metamodel.compiled`), or from Arpeggio where that is not compiled or the text does
+    not match, so that a syntax error is described as Arpeggio describes it."""
     metamodel = textx_metamodel(root, fragments, extensions)
     builder = _object_builder(metamodel)
     try:
         if builder is None:
             return metamodel.model_from_str(text, file_name=file)
-        parser = metamodel._parser_blueprint.clone()
-        parser.parse(text, file_name=file)
-        return builder.build(parser.parse_tree[0])
+        compiled = _compiled_parser(metamodel)
+        tree = None if compiled is None else compiled(text)
+        if tree is None:
+            parser = metamodel._parser_blueprint.clone()
+            parser.parse(text, file_name=file)
+            tree = parser.parse_tree
+        return builder.build(tree[0])
     except TextXSyntaxError as error:
         raise SyntaxProblem(_describe(error), error.line or 1, error.col or 1) from None
 
