@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any, Protocol
 
 from lightrocks.metamodel import ast
-from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.metamodel.grammar import SyntaxProblem, paused_gc
 from lightrocks.workbench.depth import TOO_DEEP, deepest, deepest_node
 from lightrocks.workbench.extensions import extensions_of
 from lightrocks.workbench.languages import Language
@@ -74,7 +74,8 @@ def _parsed(language: Language, text: str, shown: str) -> Any:
     except RecursionError:
         where = deepest(text, shown)
         return SyntaxProblem(TOO_DEEP, where.line, where.column)
-    where = deepest_node(unit)
+    with paused_gc():
+        where = deepest_node(unit)
     return unit if where is None else SyntaxProblem(TOO_DEEP, where.line, where.column)
 
 
