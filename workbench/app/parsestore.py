@@ -48,7 +48,16 @@ class DiskStore:
 
 
 def encode(value: Any) -> Any:
-    """A unit (or syntax problem) as JSON data; tuples become lists."""
+    """A unit (or syntax problem) as JSON data; tuples become lists. The classes of the AST
+    and tuples, nearly every value of a unit, are told apart by a look-up of their type."""
+    names = _FIELD_NAMES.get(type(value))
+    if names is not None:
+        encoded = {name: encode(getattr(value, name)) for name in names}
+        return {"$": type(value).__name__, **encoded}
+    if type(value) is tuple:
+        return [encode(item) for item in value]
+    if value is None or isinstance(value, str | int | float):
+        return value
     if isinstance(value, SyntaxProblem):
         return {"$": PROBLEM, "message": value.message, "line": value.line, "column": value.column}
     if is_dataclass(value):
@@ -56,8 +65,6 @@ def encode(value: Any) -> Any:
         return {"$": type(value).__name__, **encoded}
     if isinstance(value, tuple):
         return [encode(item) for item in value]
-    if value is None or isinstance(value, str | int | float):
-        return value
     raise TypeError(f"cannot store {type(value).__name__}")
 
 
@@ -95,3 +102,4 @@ def _restore(cls: type, values: dict[str, Any]) -> Any:
 
 
 _FIELDS = {cls: {f.name for f in fields(cls)} for cls in CLASSES.values()}
+_FIELD_NAMES = {cls: ast.field_names(cls) for cls in CLASSES.values()}
