@@ -2,8 +2,9 @@
 
 The plant runs each step in two halves (``mj_step2``, then ``mj_step1`` of the next step), so
 after a tick MuJoCo has already computed the kinematics, the mass matrix and the bias forces
-of the state it just reached. Reading them costs a Jacobian and a few copies; computing them
-again with Pinocchio cost a dozen library calls per tick.
+of the state it just reached. Reading them costs a Jacobian (``mj_jacSite``) and one native
+call (adapters.kernels.mujoco_sense) that copies them into the arm state and does the wrist
+sensing; computing them again with Pinocchio cost a dozen library calls per tick.
 """
 
 from __future__ import annotations
@@ -11,8 +12,9 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from lightrocks.adapters import kernels as k
 from lightrocks.adapters.arm import ArmState
-from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
+from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, TCP_SITE
 
 
 class MujocoArm(ArmState):
@@ -21,30 +23,31 @@ class MujocoArm(ArmState):
     def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, qadr: int, vadr: int) -> None:
         super().__init__()
         self._model, self._data = model, data
-        self._joint_q = data.qpos[qadr : qadr + NV]
-        self._joint_v = data.qvel[vadr : vadr + NV]
         tcp, ft = model.site(TCP_SITE).id, model.site(FT_SITE).id
         self._tcp = tcp
-        self.position = data.site_xpos[tcp]
-        self.rotation = data.site_xmat[tcp].reshape(3, 3)
-        self.ft_position = data.site_xpos[ft]
-        self.ft_rotation = data.site_xmat[ft].reshape(3, 3)
-        self.bias = data.qfrc_bias[vadr : vadr + ARM_DOF]
-        """Views into ``data``: MuJoCo rewrites them in place every step."""
+        self._index = np.array([qadr, vadr, tcp, ft], dtype=np.int64)
+        self._inputs = (data.qpos, data.qvel, data.site_xpos, data.site_xmat, data.qfrc_bias)
+        """MuJoCo's arrays (views into ``data``, which every step rewrites in place)."""
         self._jacobians = np.zeros((6, model.nv))
         self._linear, self._angular = self._jacobians[:3], self._jacobians[3:]
-        self._robot_columns = self._jacobians[:, vadr : vadr + NV]
-        self.jacobian = self._jacobians[:, vadr : vadr + ARM_DOF]
         self._mass = np.zeros((model.nv, model.nv))
         self._arm_mass = self._mass[vadr : vadr + ARM_DOF, vadr : vadr + ARM_DOF]
+        self._sense_only = np.zeros(k.SENSE_SIZE)
+        """A scratch sensing buffer for ``update()`` without sensing."""
 
-    def update(self) -> None:
+    def _read(self, sensing: np.ndarray) -> None:
         model, data = self._model, self._data
-        self.q[:] = self._joint_q
-        self.v[:] = self._joint_v
-        self.point = tuple(self.position.tolist())
         mujoco.mj_jacSite(model, data, self._linear, self._angular, self._tcp)
-        np.matmul(self._robot_columns, self.v, out=self.twist)
+        qpos, qvel, xpos, xmat, bias = self._inputs
+        k.mujoco_sense(
+            qpos, qvel, xpos, xmat, bias, self._jacobians, self._index, self.buffer, sensing
+        )
         if self._slow_tick():
             mujoco.mj_fullM(model, data, self._mass)
             self._set_mass(self._arm_mass)
+
+    def update(self) -> None:
+        self._read(self._sense_only)
+
+    def sense(self) -> None:
+        self._read(self.sensing)

@@ -14,7 +14,7 @@ import numpy as np
 
 from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState
-from lightrocks.adapters.control import DT
+from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.mujoco.arm import MujocoArm
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
@@ -60,13 +60,12 @@ class MujocoPlant:
         self._site_rotation = self.data.site_xmat[site].reshape(3, 3)
         self._site_wrench = self.data.sensordata[self._force : self._force + 6].reshape(2, 3)
         """Views into ``data``: read in place every tick, never copied."""
-        self._raw = np.zeros(6)
-        self._raw_rows = self._raw.reshape(2, 3)
         self._arm_ctrl = self.data.ctrl[self._ctrl : self._ctrl + ARM_DOF]
         self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
         self.arm: ArmState = MujocoArm(self.model, self.data, qa, va)
+        self._raw_rows = self.arm.raw.reshape(2, 3)
         self._read_wrist()
         self._begin_step()
 
@@ -94,9 +93,9 @@ class MujocoPlant:
         np.matmul(self._site_wrench, self._site_rotation.T, out=self._raw_rows)
 
     def wrist(self) -> np.ndarray:
-        """The force/torque sensors (site frame) in world axes (the array is reused: valid
-        until the next step)."""
-        return self._raw
+        """The force/torque sensors (site frame) in world axes: the arm state's ``raw``,
+        rewritten by every step."""
+        return self.arm.raw
 
     def sync(self) -> None:
         """``data`` is the simulation itself: always current."""

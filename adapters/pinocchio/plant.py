@@ -25,7 +25,7 @@ import pinocchio as pin
 
 from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState, PinocchioArm
-from lightrocks.adapters.control import DT
+from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -97,11 +97,12 @@ class PinocchioPlant:
         self._ft = self.robot_data.oMf[self._ft_id]
         """Placements of the hand and the ft site: references into ``robot_data``."""
         self._contact = np.zeros(6)
+        """Environment wrench on the hand subtree at the ft site, world axes."""
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
         self._fixture = scene_hooks.fixture_twin(scene)
         self._grasp = 0.0
         """Finger position [m] where the fingers stop on a grasped fixture part (0: none)."""
-        """Environment wrench on the hand subtree at the ft site, world axes."""
+        self._write_wrist()
 
     @property
     def fixture(self) -> scene_hooks.FixtureTwin | None:
@@ -157,6 +158,7 @@ class PinocchioPlant:
         speeds = [0.0 if stop and s < 0 else s for stop, s in zip(blocked, speeds, strict=True)]
         self.v[ARM_DOF:] = speeds
         self.q[ARM_DOF:] = [f + DT * s for f, s in zip(fingers, speeds, strict=True)]
+        self._write_wrist()
 
     def _apply_fixture(self, generalized: np.ndarray, grip: float) -> None:
         """Step the scene's fixture twin; add its wrench at the TCP to joints and wrist."""
@@ -232,19 +234,22 @@ class PinocchioPlant:
         return pressure * normal + friction
 
     def wrist(self) -> np.ndarray:
-        """Quasi-static reading: what link7 must exert to hold the load against contacts."""
+        """The raw reading of the last step: the arm state's ``raw``."""
+        return self.arm.raw
+
+    def _write_wrist(self) -> None:
+        """Quasi-static reading: what link7 must exert to hold the load against contacts
+        (the ft site pose and contacts of the step's start)."""
         lx, ly, lz = (self._ft.rotation @ self._load_com).tolist()
         wx, wy, wz = self._load
         fx, fy, fz, tx, ty, tz = self._contact.tolist()
-        return np.array(
-            (
-                -fx - wx,
-                -fy - wy,
-                -fz - wz,
-                -tx - (ly * wz - lz * wy),
-                -ty - (lz * wx - lx * wz),
-                -tz - (lx * wy - ly * wx),
-            )
+        self.arm.raw[:] = (
+            -fx - wx,
+            -fy - wy,
+            -fz - wz,
+            -tx - (ly * wz - lz * wy),
+            -ty - (lz * wx - lx * wz),
+            -tz - (lx * wy - ly * wx),
         )
 
     def sync(self) -> None:

@@ -1,0 +1,523 @@
+"""The arithmetic of the 1 kHz tick as native code (numba), one call per phase of a tick.
+
+In Python every NumPy or Pinocchio call costs a fixed ~0.5 µs whatever the size of its
+arrays, and the controller, the arm state and the wrist sensing needed about 40 of them per
+tick, four times the cost of the physics step itself. Here each phase is one compiled
+function over preallocated flat buffers: the controller (``cartesian_torque``,
+``joint_torque``) and the sensing after a step (``sense``, or ``mujoco_sense``, which also
+reads MuJoCo's data). Each buffer has a fixed layout (the offsets below); the Python objects
+that own a buffer expose named views of it, so everything outside the tick reads arrays as
+before.
+
+The functions are compiled on first use and cached next to this file (numba's ``cache=True``:
+the cache is keyed by this file's contents and the CPU, and written atomically, so several
+processes may share it). ``exp3`` and ``log3`` follow Pinocchio's algorithms (same Taylor
+branches and thresholds), matrix products sum in index order: results equal NumPy's and
+Pinocchio's to rounding, not bit for bit (their BLAS/Eigen kernels sum in other orders).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from lightrocks.adapters.robot_model import ARM_DOF, NV
+
+DT = 0.001
+"""Control period [s]."""
+
+_JIT = {"cache": True, "error_model": "numpy"}
+"""NumPy's error model: a division by zero gives inf/nan as in NumPy, with no Python check."""
+
+_EPS = float(np.finfo(float).eps)
+_PREC2 = _EPS ** (1.0 / 3.0)
+_PREC3 = _EPS**0.25
+"""Pinocchio's ``TaylorSeriesExpansion<double>::precision<2>()`` and ``<3>()``."""
+
+# -- the arm state buffer (adapters.arm.ArmState.buffer) ----------------------------------------
+STATE = 0
+"""Joint positions (NV), then velocities (NV)."""
+POS = STATE + 2 * NV
+ROT = POS + 3
+FT_POS = ROT + 9
+FT_ROT = FT_POS + 3
+TWIST = FT_ROT + 9
+BIAS = TWIST + 6
+JAC = BIAS + ARM_DOF
+"""TCP Jacobian of the arm joints, 6 x ARM_DOF, row-major. Rotations are row-major too."""
+ARM_SIZE = JAC + 6 * ARM_DOF
+
+# -- the Cartesian impedance buffer (adapters.control.CartesianImpedance) -------------------------
+C_K = 0
+C_D = C_K + 6
+C_P0 = C_D + 6
+C_DP = C_P0 + 3
+C_DR = C_DP + 3
+C_R0 = C_DR + 3
+C_RGOAL = C_R0 + 9
+C_PGOAL = C_RGOAL + 9
+C_TWSET = C_PGOAL + 3
+C_DURATION = C_TWSET + 6
+C_ELAPSED = C_DURATION + 1
+C_MOVING = C_ELAPSED + 1
+C_OFFSET = C_MOVING + 1
+"""1.0 when the task frame is not the TCP."""
+C_TASK_R = C_OFFSET + 1
+C_TASK_P = C_TASK_R + 9
+C_NS_POSTURE = C_TASK_P + 3
+C_NS_STATE = C_NS_POSTURE + ARM_DOF
+"""Null-space torque = posture term + (ARM_DOF x 2 NV matrix) @ joint state."""
+C_ERRORS = C_NS_STATE + ARM_DOF * 2 * NV
+"""Rows: position error, linear and angular error velocity, world axes."""
+C_LOCAL = C_ERRORS + 9
+"""The rows of the errors in task axes."""
+C_EROT = C_LOCAL + 9
+C_FRAME_JAC = C_EROT + 3
+C_FRAME_ROT = C_FRAME_JAC + 6 * ARM_DOF
+C_FRAME_POS = C_FRAME_ROT + 9
+C_FRAME_TWIST = C_FRAME_POS + 3
+C_RATIO = C_FRAME_TWIST + 6
+"""Damping ratios."""
+C_POSTURE = C_RATIO + 6
+"""Null-space posture: the arm configuration at command start."""
+C_TICKS = C_POSTURE + ARM_DOF
+"""Ticks run so far: the slow terms are refreshed on every SLOW_EVERY-th, starting with the
+first."""
+CARTESIAN_SIZE = C_TICKS + 1
+
+SLOW_EVERY = 10
+"""Ticks between refreshes of the mass matrix and of what the controllers derive from it, which
+change slowly with the configuration."""
+NULLSPACE_STIFFNESS = 10.0
+"""Posture stiffness [Nm/rad] pulling the elbow towards the configuration at command start."""
+NULLSPACE_DAMPING = 2.0
+LAMBDA_REGULARISATION = 1e-6
+"""Added to the diagonal of Λ⁻¹ before inverting it (near singular configurations)."""
+
+# -- the joint impedance buffer (adapters.control.JointImpedance) -------------------------------
+J_K = 0
+J_D = J_K + ARM_DOF
+J_Q0 = J_D + ARM_DOF
+J_DQ = J_Q0 + ARM_DOF
+J_VSET = J_DQ + ARM_DOF
+J_DURATION = J_VSET + ARM_DOF
+J_ELAPSED = J_DURATION + 1
+JOINT_SIZE = J_ELAPSED + 1
+
+# -- the sensing buffer (adapters.sensing.WristSensor and the cell's motion sensors) ------------
+S_RAW = 0
+"""Raw wrist wrench (see adapters.sensing), input of each tick."""
+S_OFFSET = S_RAW + 6
+S_WEIGHT = S_OFFSET + 6
+S_LOAD_COM = S_WEIGHT + 3
+S_ALPHA = S_LOAD_COM + 3
+S_VALUES = S_ALPHA + 1
+"""Filtered wrench at the TCP, world axes."""
+S_PEAK = S_VALUES + 6
+S_TURNED = S_PEAK + 1
+S_YAW = S_TURNED + 1
+S_R0 = S_YAW + 1
+"""TCP rotation at command start."""
+SENSE_SIZE = S_R0 + 9
+
+# -- indices into MuJoCo's data for mujoco_sense ------------------------------------------------
+M_QADR, M_VADR, M_TCP, M_FT = 0, 1, 2, 3
+"""``index`` array: first robot qpos and dof address, TCP and ft site ids."""
+
+
+@njit(**_JIT)
+def exp3(v0: float, v1: float, v2: float, out: np.ndarray) -> None:
+    """Rotation matrix of the rotation vector (Pinocchio's ``exp3``) into ``out`` (3 x 3)."""
+    t2 = v0 * v0 + v1 * v1 + v2 * v2 + _EPS * _EPS
+    t = math.sqrt(t2)
+    st, ct = math.sin(t), math.cos(t)
+    if t > _PREC3:
+        a_vxvx, a_vx = (1 - ct) / t2, st / t
+    else:
+        a_vxvx, a_vx, ct = 0.5 - t2 / 24, 1.0 - t2 / 6, 1.0 - t2 / 2
+    a0, a1, a2 = a_vxvx * v0, a_vxvx * v1, a_vxvx * v2
+    out[0, 0] = a0 * v0 + ct
+    out[0, 1] = a0 * v1 - a_vx * v2
+    out[0, 2] = a0 * v2 + a_vx * v1
+    out[1, 0] = a1 * v0 + a_vx * v2
+    out[1, 1] = a1 * v1 + ct
+    out[1, 2] = a1 * v2 - a_vx * v0
+    out[2, 0] = a2 * v0 - a_vx * v1
+    out[2, 1] = a2 * v1 + a_vx * v0
+    out[2, 2] = a2 * v2 + ct
+
+
+@njit(**_JIT)
+def _theta_axis(i0: int, val: float, r: np.ndarray, axis: np.ndarray) -> float:
+    """Angle and axis of a rotation near π from its column ``i0`` (Pinocchio's
+    ``compute_theta_axis``); returns the angle, ``axis`` receives the unit axis."""
+    i1, i2 = (i0 + 1) % 3, (i0 + 2) % 3
+    s = math.sqrt(val + _EPS + _EPS * _EPS)
+    if r[i2, i1] < r[i1, i2]:
+        s = -s
+    axis[i0] = s / 2
+    axis[i1] = 1.0 / (2 * s) * (r[i1, i0] + r[i0, i1])
+    axis[i2] = 1.0 / (2 * s) * (r[i2, i0] + r[i0, i2])
+    w = 1.0 / (2 * s) * (r[i2, i1] - r[i1, i2])
+    norm = math.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
+    axis[0] /= norm
+    axis[1] /= norm
+    axis[2] /= norm
+    return 2 * math.atan2(norm, w)
+
+
+@njit(**_JIT)
+def log3(r_in: np.ndarray, out: np.ndarray) -> None:
+    """Rotation vector of a rotation matrix (Pinocchio's ``log3``, including its
+    renormalisation and its branches near 0 and π) into ``out`` (3)."""
+    r = np.empty((3, 3))
+    n0 = math.sqrt(r_in[0, 0] ** 2 + r_in[1, 0] ** 2 + r_in[2, 0] ** 2)
+    n1 = math.sqrt(r_in[0, 1] ** 2 + r_in[1, 1] ** 2 + r_in[2, 1] ** 2)
+    for i in range(3):
+        r[i, 0] = r_in[i, 0] / n0
+        r[i, 1] = r_in[i, 1] / n1
+    r[0, 2] = r[1, 0] * r[2, 1] - r[2, 0] * r[1, 1]  # col2 = col0 x col1
+    r[1, 2] = r[2, 0] * r[0, 1] - r[0, 0] * r[2, 1]
+    r[2, 2] = r[0, 0] * r[1, 1] - r[1, 0] * r[0, 1]
+    c0, c1, c2 = r[1, 1] * r[2, 2] - r[2, 1] * r[1, 2], 0.0, 0.0  # col0 = col1 x col2
+    c1 = r[2, 1] * r[0, 2] - r[0, 1] * r[2, 2]
+    c2 = r[0, 1] * r[1, 2] - r[1, 1] * r[0, 2]
+    r[0, 0], r[1, 0], r[2, 0] = c0, c1, c2
+    tr = r[0, 0] + r[1, 1] + r[2, 2]
+    cos_value = (tr - 1) / 2
+    if cos_value < -1 + _PREC2:  # θ near π: the axis from the largest diagonal element
+        axis = np.empty(3)
+        vals = (2 * r[0, 0] - tr + 1, 2 * r[1, 1] - tr + 1, 2 * r[2, 2] - tr + 1)
+        if vals[0] >= vals[1]:
+            i0 = 0 if vals[0] >= vals[2] else 2
+        else:
+            i0 = 1 if vals[1] >= vals[2] else 2
+        theta = _theta_axis(i0, vals[i0], r, axis)
+        out[0], out[1], out[2] = theta * axis[0], theta * axis[1], theta * axis[2]
+        return
+    acos_expansion = math.sqrt(2 * (1 - cos_value) + _EPS * _EPS)
+    if tr <= 3 - _PREC2:
+        theta = math.acos(cos_value) if tr >= -1 + _PREC2 else math.pi - acos_expansion
+    else:
+        theta = acos_expansion
+    a0 = 0.5 * (r[2, 1] - r[1, 2])
+    a1 = 0.5 * (r[0, 2] - r[2, 0])
+    a2 = 0.5 * (r[1, 0] - r[0, 1])
+    if theta >= _PREC2:
+        t = theta / math.sin(theta)
+    else:
+        n2 = a0 * a0 + a1 * a1 + a2 * a2
+        t = 1.0 + n2 / 6 + n2 * n2 * 3 / 40
+    out[0], out[1], out[2] = t * a0, t * a1, t * a2
+
+
+@njit(**_JIT)
+def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
+    """Inverse of a symmetric positive definite matrix by its Cholesky factor L:
+    ``a⁻¹ = L⁻ᵀ L⁻¹`` (numba's ``np.linalg.inv`` needs SciPy's LAPACK)."""
+    n = a.shape[0]
+    low = np.zeros((n, n))
+    for j in range(n):
+        total = a[j, j]
+        for m in range(j):
+            total -= low[j, m] * low[j, m]
+        low[j, j] = math.sqrt(total)
+        for i in range(j + 1, n):
+            total = a[i, j]
+            for m in range(j):
+                total -= low[i, m] * low[j, m]
+            low[i, j] = total / low[j, j]
+    inv = np.zeros((n, n))  # L⁻¹, lower triangular
+    for j in range(n):
+        inv[j, j] = 1.0 / low[j, j]
+        for i in range(j + 1, n):
+            total = 0.0
+            for m in range(j, i):
+                total += low[i, m] * inv[m, j]
+            inv[i, j] = -total / low[i, i]
+    for i in range(n):
+        for j in range(i, n):
+            total = 0.0
+            for m in range(j, n):
+                total += inv[m, i] * inv[m, j]
+            out[i, j] = out[j, i] = total
+
+
+@njit(**_JIT)
+def cartesian_refresh(mass_inv: np.ndarray, c: np.ndarray) -> None:
+    """The slow terms of Cartesian impedance from the controlled frame in ``c`` (see
+    ``cartesian_frame``) and the inverse arm mass matrix: the damping ``D = 2 ζ sqrt(K Λ_ii)``
+    with the diagonal of the operational-space inertia Λ = (J M⁻¹ Jᵀ)⁻¹ in task axes, and the
+    dynamically consistent null-space projector ``N = I − Jᵀ J̄ᵀ``, ``J̄ = M⁻¹ Jᵀ Λ``, split into
+    a constant posture torque and a matrix acting on the joint state."""
+    jac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
+    rot = c[C_FRAME_ROT : C_FRAME_ROT + 9].reshape(3, 3)
+    mj = np.zeros((ARM_DOF, 6))  # M⁻¹ Jᵀ
+    for i in range(ARM_DOF):
+        for j in range(6):
+            total = 0.0
+            for m in range(ARM_DOF):
+                total += mass_inv[i, m] * jac[j, m]
+            mj[i, j] = total
+    lam_inv = np.zeros((6, 6))
+    for i in range(6):
+        for j in range(6):
+            total = 0.0
+            for m in range(ARM_DOF):
+                total += jac[i, m] * mj[m, j]
+            lam_inv[i, j] = total
+        lam_inv[i, i] += LAMBDA_REGULARISATION
+    lam = np.zeros((6, 6))
+    spd_inverse(lam_inv, lam)
+    for b in range(2):  # the diagonal of diag(R, R)ᵀ Λ diag(R, R)
+        for i in range(3):
+            total = 0.0
+            for m in range(3):
+                for n in range(3):
+                    total += rot[m, i] * lam[3 * b + m, 3 * b + n] * rot[n, i]
+            axis = 3 * b + i
+            c[C_D + axis] = 2.0 * c[C_RATIO + axis] * math.sqrt(c[C_K + axis] * max(total, 0.0))
+    jbar = np.zeros((ARM_DOF, 6))
+    for i in range(ARM_DOF):
+        for j in range(6):
+            total = 0.0
+            for m in range(6):
+                total += mj[i, m] * lam[m, j]
+            jbar[i, j] = total
+    ns = c[C_NS_STATE : C_NS_STATE + ARM_DOF * 2 * NV].reshape(ARM_DOF, 2 * NV)
+    for i in range(ARM_DOF):
+        posture = 0.0
+        for j in range(ARM_DOF):
+            total = 0.0
+            for m in range(6):
+                total += jac[m, i] * jbar[j, m]
+            projector = (1.0 if i == j else 0.0) - total
+            posture += projector * c[C_POSTURE + j]
+            ns[i, j] = -NULLSPACE_STIFFNESS * projector
+            ns[i, NV + j] = -NULLSPACE_DAMPING * projector
+        c[C_NS_POSTURE + i] = NULLSPACE_STIFFNESS * posture
+
+
+@njit(**_JIT)
+def cartesian_frame(arm: np.ndarray, c: np.ndarray) -> None:
+    """Pose, Jacobian and twist of the controlled frame (``tcp * task``) into ``c``."""
+    rot = arm[ROT : ROT + 9].reshape(3, 3)
+    pos = arm[POS : POS + 3]
+    jac = arm[JAC : JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
+    frot = c[C_FRAME_ROT : C_FRAME_ROT + 9].reshape(3, 3)
+    fpos = c[C_FRAME_POS : C_FRAME_POS + 3]
+    fjac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
+    ftwist = c[C_FRAME_TWIST : C_FRAME_TWIST + 6]
+    if c[C_OFFSET] == 0.0:
+        frot[:] = rot
+        fpos[:] = pos
+        fjac[:] = jac
+        ftwist[:] = arm[TWIST : TWIST + 6]
+        return
+    task_r = c[C_TASK_R : C_TASK_R + 9].reshape(3, 3)
+    task_p = c[C_TASK_P : C_TASK_P + 3]
+    for i in range(3):
+        for j in range(3):
+            frot[i, j] = (
+                rot[i, 0] * task_r[0, j] + rot[i, 1] * task_r[1, j] + rot[i, 2] * task_r[2, j]
+            )
+        fpos[i] = rot[i, 0] * task_p[0] + rot[i, 1] * task_p[1] + rot[i, 2] * task_p[2] + pos[i]
+    dx, dy, dz = fpos[0] - pos[0], fpos[1] - pos[1], fpos[2] - pos[2]
+    for j in range(ARM_DOF):  # linear rows -= skew(d) @ angular rows
+        wx, wy, wz = jac[3, j], jac[4, j], jac[5, j]
+        fjac[0, j] = jac[0, j] - (dy * wz - dz * wy)
+        fjac[1, j] = jac[1, j] - (dz * wx - dx * wz)
+        fjac[2, j] = jac[2, j] - (dx * wy - dy * wx)
+        fjac[3, j], fjac[4, j], fjac[5, j] = wx, wy, wz
+    for i in range(6):
+        total = 0.0
+        for j in range(ARM_DOF):
+            total += fjac[i, j] * arm[STATE + NV + j]
+        ftwist[i] = total
+
+
+@njit(**_JIT)
+def cartesian_torque(arm: np.ndarray, mass_inv: np.ndarray, c: np.ndarray, tau: np.ndarray) -> None:
+    """One tick of Cartesian impedance (see adapters.control.CartesianImpedance) into ``tau``;
+    advances the set point by DT and refreshes the slow terms every SLOW_EVERY ticks."""
+    duration, elapsed = c[C_DURATION], c[C_ELAPSED]
+    s = 1.0 if duration <= 0 else min(elapsed / duration, 1.0)
+    c[C_ELAPSED] = elapsed + DT
+    moving = s < 1.0
+    c[C_MOVING] = 1.0 if moving else 0.0
+    cartesian_frame(arm, c)
+    if c[C_TICKS] % SLOW_EVERY == 0:
+        cartesian_refresh(mass_inv, c)
+    c[C_TICKS] += 1
+    rot = c[C_FRAME_ROT : C_FRAME_ROT + 9].reshape(3, 3)
+    pos = c[C_FRAME_POS : C_FRAME_POS + 3]
+    jac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
+    twist = c[C_FRAME_TWIST : C_FRAME_TWIST + 6]
+    errors = c[C_ERRORS : C_ERRORS + 9].reshape(3, 3)
+    r_set = np.empty((3, 3))
+    if moving:
+        for i in range(3):
+            errors[0, i] = c[C_P0 + i] + s * c[C_DP + i] - pos[i]
+        for i in range(6):
+            errors[1 + i // 3, i % 3] = c[C_TWSET + i] - twist[i]
+        turn = np.empty((3, 3))
+        exp3(s * c[C_DR], s * c[C_DR + 1], s * c[C_DR + 2], turn)
+        r0 = c[C_R0 : C_R0 + 9].reshape(3, 3)
+        for i in range(3):
+            for j in range(3):
+                r_set[i, j] = r0[i, 0] * turn[0, j] + r0[i, 1] * turn[1, j] + r0[i, 2] * turn[2, j]
+    else:
+        for i in range(3):
+            errors[0, i] = c[C_PGOAL + i] - pos[i]
+        for i in range(6):
+            errors[1 + i // 3, i % 3] = -twist[i]
+        r_set[:] = c[C_RGOAL : C_RGOAL + 9].reshape(3, 3)
+    local = c[C_LOCAL : C_LOCAL + 9].reshape(3, 3)
+    for i in range(3):  # row i: Rᵀ errors[i]
+        for j in range(3):
+            local[i, j] = (
+                errors[i, 0] * rot[0, j] + errors[i, 1] * rot[1, j] + errors[i, 2] * rot[2, j]
+            )
+    error = np.empty((3, 3))
+    for i in range(3):  # Rᵀ R_set
+        for j in range(3):
+            error[i, j] = (
+                rot[0, i] * r_set[0, j] + rot[1, i] * r_set[1, j] + rot[2, i] * r_set[2, j]
+            )
+    e_rot = c[C_EROT : C_EROT + 3]
+    log3(error, e_rot)
+    wrench = np.empty(6)  # K e + D ė in task axes, force then torque
+    for i in range(3):
+        wrench[i] = c[C_K + i] * local[0, i] + c[C_D + i] * local[1, i]
+        wrench[3 + i] = c[C_K + 3 + i] * e_rot[i] + c[C_D + 3 + i] * local[2, i]
+    world = np.empty(6)  # back to world axes, per 3-block
+    for b in range(2):
+        for i in range(3):
+            world[3 * b + i] = (
+                wrench[3 * b] * rot[i, 0]
+                + wrench[3 * b + 1] * rot[i, 1]
+                + wrench[3 * b + 2] * rot[i, 2]
+            )
+    ns = c[C_NS_STATE : C_NS_STATE + ARM_DOF * 2 * NV].reshape(ARM_DOF, 2 * NV)
+    for j in range(ARM_DOF):
+        total = 0.0
+        for i in range(6):
+            total += jac[i, j] * world[i]
+        posture = 0.0
+        for m in range(2 * NV):
+            posture += ns[j, m] * arm[STATE + m]
+        tau[j] = total + arm[BIAS + j] + c[C_NS_POSTURE + j] + posture
+
+
+@njit(**_JIT)
+def joint_torque(arm: np.ndarray, c: np.ndarray, tau: np.ndarray) -> None:
+    """One tick of joint impedance (see adapters.control.JointImpedance) into ``tau``."""
+    duration, elapsed = c[J_DURATION], c[J_ELAPSED]
+    s = 1.0 if duration <= 0 else min(elapsed / duration, 1.0)
+    c[J_ELAPSED] = elapsed + DT
+    for j in range(ARM_DOF):
+        v_set = c[J_VSET + j] if s < 1.0 else 0.0
+        error = c[J_Q0 + j] + s * c[J_DQ + j] - arm[STATE + j]
+        tau[j] = c[J_K + j] * error + c[J_D + j] * (v_set - arm[STATE + NV + j]) + arm[BIAS + j]
+
+
+@njit(**_JIT)
+def sense(arm: np.ndarray, s: np.ndarray) -> None:
+    """Wrist sensing (adapters.sensing) of the raw reading in ``s``, then the peak force and
+    the TCP's turn about its own z since command start (unwrapped)."""
+    ft_rot = arm[FT_ROT : FT_ROT + 9].reshape(3, 3)
+    lx = (
+        ft_rot[0, 0] * s[S_LOAD_COM]
+        + ft_rot[0, 1] * s[S_LOAD_COM + 1]
+        + ft_rot[0, 2] * s[S_LOAD_COM + 2]
+    )
+    ly = (
+        ft_rot[1, 0] * s[S_LOAD_COM]
+        + ft_rot[1, 1] * s[S_LOAD_COM + 1]
+        + ft_rot[1, 2] * s[S_LOAD_COM + 2]
+    )
+    lz = (
+        ft_rot[2, 0] * s[S_LOAD_COM]
+        + ft_rot[2, 1] * s[S_LOAD_COM + 1]
+        + ft_rot[2, 2] * s[S_LOAD_COM + 2]
+    )
+    wx, wy, wz = s[S_WEIGHT], s[S_WEIGHT + 1], s[S_WEIGHT + 2]
+    fx = -s[S_RAW] - s[S_OFFSET] - wx
+    fy = -s[S_RAW + 1] - s[S_OFFSET + 1] - wy
+    fz = -s[S_RAW + 2] - s[S_OFFSET + 2] - wz
+    tx = -s[S_RAW + 3] - s[S_OFFSET + 3] - (ly * wz - lz * wy)
+    ty = -s[S_RAW + 4] - s[S_OFFSET + 4] - (lz * wx - lx * wz)
+    tz = -s[S_RAW + 5] - s[S_OFFSET + 5] - (lx * wy - ly * wx)
+    dx, dy, dz = (
+        arm[FT_POS] - arm[POS],
+        arm[FT_POS + 1] - arm[POS + 1],
+        arm[FT_POS + 2] - arm[POS + 2],
+    )
+    tx += dy * fz - dz * fy
+    ty += dz * fx - dx * fz
+    tz += dx * fy - dy * fx
+    a = s[S_ALPHA]
+    new = (fx, fy, fz, tx, ty, tz)
+    for i in range(6):
+        s[S_VALUES + i] = s[S_VALUES + i] + (new[i] - s[S_VALUES + i]) * a
+    vx, vy, vz = s[S_VALUES], s[S_VALUES + 1], s[S_VALUES + 2]
+    s[S_PEAK] = max(s[S_PEAK], math.sqrt(vx * vx + vy * vy + vz * vz))
+    c0, c1, c2 = arm[ROT], arm[ROT + 3], arm[ROT + 6]
+    cos = c0 * s[S_R0] + c1 * s[S_R0 + 3] + c2 * s[S_R0 + 6]  # first column of R₀ᵀ R
+    sin = c0 * s[S_R0 + 1] + c1 * s[S_R0 + 4] + c2 * s[S_R0 + 7]
+    yaw = math.atan2(sin, cos)
+    s[S_TURNED] += (yaw - s[S_YAW] + math.pi) % (2 * math.pi) - math.pi
+    s[S_YAW] = yaw
+
+
+@njit(**_JIT)
+def mujoco_sense(
+    qpos: np.ndarray,
+    qvel: np.ndarray,
+    site_xpos: np.ndarray,
+    site_xmat: np.ndarray,
+    qfrc_bias: np.ndarray,
+    jacobians: np.ndarray,
+    index: np.ndarray,
+    arm: np.ndarray,
+    s: np.ndarray,
+) -> None:
+    """The arm state from MuJoCo's data after a step (``jacobians``: ``mj_jacSite`` of the TCP,
+    6 x nv), then ``sense`` into the sensing buffer ``s``."""
+    qa, va, tcp, ft = index[M_QADR], index[M_VADR], index[M_TCP], index[M_FT]
+    for j in range(NV):
+        arm[STATE + j] = qpos[qa + j]
+        arm[STATE + NV + j] = qvel[va + j]
+    for i in range(3):
+        arm[POS + i] = site_xpos[tcp, i]
+        arm[FT_POS + i] = site_xpos[ft, i]
+    for i in range(9):
+        arm[ROT + i] = site_xmat[tcp, i]
+        arm[FT_ROT + i] = site_xmat[ft, i]
+    for j in range(ARM_DOF):
+        arm[BIAS + j] = qfrc_bias[va + j]
+    for i in range(6):
+        total = 0.0
+        for j in range(NV):
+            total += jacobians[i, va + j] * arm[STATE + NV + j]
+        arm[TWIST + i] = total
+        for j in range(ARM_DOF):
+            arm[JAC + i * ARM_DOF + j] = jacobians[i, va + j]
+    sense(arm, s)
+
+
+def warm_up() -> None:
+    """Compile (or load from the cache) every kernel now, on scratch buffers, so that the
+    first command does not pay for it inside its control loop."""
+    arm, tau = np.zeros(ARM_SIZE), np.zeros(ARM_DOF)
+    cartesian = np.zeros(CARTESIAN_SIZE)
+    cartesian_torque(arm, np.eye(ARM_DOF), cartesian, tau)
+    spd_inverse(np.eye(ARM_DOF), np.zeros((ARM_DOF, ARM_DOF)))
+    joint_torque(arm, np.zeros(JOINT_SIZE), tau)
+    sense(arm, np.zeros(SENSE_SIZE))
+    site, sensing = np.zeros((2, 3)), np.zeros(SENSE_SIZE)
+    index = np.array([0, 0, 0, 1], dtype=np.int64)
+    joints, jacobians = np.zeros(NV), np.zeros((6, NV))
+    mujoco_sense(joints, joints, site, np.zeros((2, 9)), joints, jacobians, index, arm, sensing)
