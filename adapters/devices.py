@@ -196,8 +196,7 @@ class RobotView:
         """Built at most once per tick: several predicates usually read it."""
         cell = self._cell
         if cell.wrench_value is None:
-            fx, fy, fz, tx, ty, tz = cell.wrist.wrench.tolist()
-            cell.wrench_value = Wrench(Vector3(fx, fy, fz), Vector3(tx, ty, tz))
+            cell.wrench_value = Wrench.of_floats(*cell.wrist.wrench.tolist())
         return cell.wrench_value
 
     @property
@@ -211,7 +210,7 @@ class RobotView:
     @property
     def travel(self) -> Vector3:
         (x, y, z), (x0, y0, z0) = self._cell.arm.position.tolist(), self._cell.travel_origin
-        return Vector3(x - x0, y - y0, z - z0)
+        return Vector3.of_floats(x - x0, y - y0, z - z0)
 
     @property
     def turned(self) -> float:

@@ -23,7 +23,7 @@ import math
 import numpy as np
 from numba import njit
 
-from lightrocks.adapters.robot_model import ARM_DOF, NV
+from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL, GRIPPER_BAND, NV
 
 DT = 0.001
 """Control period [s]."""
@@ -123,8 +123,48 @@ S_R0 = S_YAW + 1
 SENSE_SIZE = S_R0 + 9
 
 # -- indices into MuJoCo's data for mujoco_sense ------------------------------------------------
-M_QADR, M_VADR, M_TCP, M_FT = 0, 1, 2, 3
-"""``index`` array: first robot qpos and dof address, TCP and ft site ids."""
+M_QADR, M_VADR, M_TCP, M_FT, M_CTRL, M_FORCE = 0, 1, 2, 3, 4, 5
+"""``index`` array: first robot qpos and dof address, TCP and ft site ids, first robot
+actuator, address of the ft_force sensor (ft_torque follows)."""
+
+
+@njit(**_JIT)
+def finger_push(grip: float, left: float, right: float, closed: float) -> tuple[float, float]:
+    """Signed drive (> 0 opens) of each finger at positions ``left``, ``right``: ``|grip|``
+    fading out linearly within GRIPPER_BAND of the target, ``closed`` if ``grip`` > 0 else
+    fully open."""
+    target = closed if grip > 0 else FINGER_TRAVEL
+    size = abs(grip)
+    return (
+        size * min(max((target - left) / GRIPPER_BAND, -1.0), 1.0),
+        size * min(max((target - right) / GRIPPER_BAND, -1.0), 1.0),
+    )
+
+
+@njit(**_JIT)
+def mujoco_actuate(
+    ctrl: np.ndarray, tau: np.ndarray, grip: float, qpos: np.ndarray, index: np.ndarray
+) -> None:
+    """Arm torques to the arm motors; each finger motor pushes with the grip force."""
+    first, qa = index[M_CTRL], index[M_QADR]
+    for j in range(ARM_DOF):
+        ctrl[first + j] = tau[j]
+    left, right = finger_push(grip, qpos[qa + ARM_DOF], qpos[qa + ARM_DOF + 1], 0.0)
+    ctrl[first + ARM_DOF], ctrl[first + ARM_DOF + 1] = left, right
+
+
+@njit(**_JIT)
+def mujoco_wrist(
+    sensordata: np.ndarray, site_xmat: np.ndarray, index: np.ndarray, raw: np.ndarray
+) -> None:
+    """The force/torque sensors (site frame) into world axes with the ft site's rotation."""
+    force, ft = index[M_FORCE], index[M_FT]
+    for b in range(2):
+        for i in range(3):
+            total = 0.0
+            for m in range(3):
+                total += sensordata[force + 3 * b + m] * site_xmat[ft, 3 * i + m]
+            raw[3 * b + i] = total
 
 
 @njit(**_JIT)
@@ -518,6 +558,9 @@ def warm_up() -> None:
     joint_torque(arm, np.zeros(JOINT_SIZE), tau)
     sense(arm, np.zeros(SENSE_SIZE))
     site, sensing = np.zeros((2, 3)), np.zeros(SENSE_SIZE)
-    index = np.array([0, 0, 0, 1], dtype=np.int64)
-    joints, jacobians = np.zeros(NV), np.zeros((6, NV))
-    mujoco_sense(joints, joints, site, np.zeros((2, 9)), joints, jacobians, index, arm, sensing)
+    index = np.array([0, 0, 0, 1, 0, 0], dtype=np.int64)
+    joints, jacobians, rotations = np.zeros(NV), np.zeros((6, NV)), np.zeros((2, 9))
+    mujoco_sense(joints, joints, site, rotations, joints, jacobians, index, arm, sensing)
+    mujoco_actuate(joints, tau, 1.0, joints, index)
+    mujoco_wrist(joints, rotations, index, sensing)
+    finger_push(1.0, 0.0, 0.0, 0.0)

@@ -12,6 +12,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
+from lightrocks.adapters import kernels as k
 from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.kernels import DT
@@ -24,7 +25,7 @@ from lightrocks.adapters.robot_model import (
     FT_SITE,
     NV,
     READY_Q,
-    finger_push,
+    TCP_SITE,
 )
 from lightrocks.adapters.scene_registry import load_model
 
@@ -48,7 +49,6 @@ class MujocoPlant:
             raise ValueError(f"robot actuators of scene {scene!r} are not contiguous")
         self.q = self.data.qpos[qa : qa + NV]
         self.v = self.data.qvel[va : va + NV]
-        self._fingers = self.q[ARM_DOF:]
         self.q[:ARM_DOF] = READY_Q
         self.q[ARM_DOF:] = FINGER_TRAVEL
         mujoco.mj_forward(self.model, self.data)
@@ -56,16 +56,15 @@ class MujocoPlant:
         self._force = int(sensor("ft_force").adr[0])
         if int(sensor("ft_torque").adr[0]) != self._force + 3:
             raise ValueError("sensor ft_torque must follow ft_force in lwr.xml")
-        site = self.model.site(FT_SITE).id
-        self._site_rotation = self.data.site_xmat[site].reshape(3, 3)
-        self._site_wrench = self.data.sensordata[self._force : self._force + 6].reshape(2, 3)
-        """Views into ``data``: read in place every tick, never copied."""
-        self._arm_ctrl = self.data.ctrl[self._ctrl : self._ctrl + ARM_DOF]
-        self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
+        tcp, ft = self.model.site(TCP_SITE).id, self.model.site(FT_SITE).id
+        self._index = np.array([qa, va, tcp, ft, self._ctrl, self._force], dtype=np.int64)
+        """Addresses in ``data`` for the native functions (adapters.kernels)."""
+        self._ctrl_all, self._qpos = self.data.ctrl, self.data.qpos
+        self._sensordata, self._site_xmat = self.data.sensordata, self.data.site_xmat
+        """MuJoCo's arrays, looked up once."""
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
         self.arm: ArmState = MujocoArm(self.model, self.data, qa, va)
-        self._raw_rows = self.arm.raw.reshape(2, 3)
         self._read_wrist()
         self._begin_step()
 
@@ -75,8 +74,7 @@ class MujocoPlant:
         The finger joint damping sets the finger speed; the force fades out within
         GRIPPER_BAND of the end of travel (see robot_model).
         """
-        self._arm_ctrl[:] = tau
-        self._finger_ctrl[:] = finger_push(grip, self._fingers.tolist(), 0.0)
+        k.mujoco_actuate(self._ctrl_all, tau, grip, self._qpos, self._index)
         mujoco.mj_step2(self.model, self.data)
         self._read_wrist()
         self._begin_step()
@@ -90,7 +88,7 @@ class MujocoPlant:
     def _read_wrist(self) -> None:
         """Rotate the force/torque sensors into world axes with the site pose they were
         computed at, before ``mj_step1`` moves it."""
-        np.matmul(self._site_wrench, self._site_rotation.T, out=self._raw_rows)
+        k.mujoco_wrist(self._sensordata, self._site_xmat, self._index, self.arm.raw)
 
     def wrist(self) -> np.ndarray:
         """The force/torque sensors (site frame) in world axes: the arm state's ``raw``,

@@ -25,7 +25,7 @@ import pinocchio as pin
 
 from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState, PinocchioArm
-from lightrocks.adapters.kernels import DT
+from lightrocks.adapters.kernels import DT, finger_push
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -37,7 +37,6 @@ from lightrocks.adapters.robot_model import (
     NV,
     READY_Q,
     TCP_SITE,
-    finger_push,
     load_robot,
 )
 from lightrocks.adapters.scene_registry import load_model
@@ -154,7 +153,7 @@ class PinocchioPlant:
         v += DT * pin.aba(self._arm, self._arm_data, q, v, self._arm_generalized)
         q += DT * v
         fingers = self.q[ARM_DOF:].tolist()
-        speeds = finger_push(grip / FINGER_DAMPING, fingers, self._grasp)
+        speeds = finger_push(grip / FINGER_DAMPING, *fingers, self._grasp)
         speeds = [0.0 if stop and s < 0 else s for stop, s in zip(blocked, speeds, strict=True)]
         self.v[ARM_DOF:] = speeds
         self.q[ARM_DOF:] = [f + DT * s for f, s in zip(fingers, speeds, strict=True)]
