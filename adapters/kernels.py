@@ -122,10 +122,15 @@ S_R0 = S_YAW + 1
 """TCP rotation at command start."""
 SENSE_SIZE = S_R0 + 9
 
-# -- indices into MuJoCo's data for mujoco_sense ------------------------------------------------
-M_QADR, M_VADR, M_TCP, M_FT, M_CTRL, M_FORCE = 0, 1, 2, 3, 4, 5
-"""``index`` array: first robot qpos and dof address, TCP and ft site ids, first robot
-actuator, address of the ft_force sensor (ft_torque follows)."""
+# -- offsets into MuJoCo's data (adapters.mujoco.data_view) for the mujoco_* functions -----------
+M_QPOS, M_QVEL, M_TCP_XPOS, M_TCP_XMAT, M_FT_XPOS, M_FT_XMAT, M_BIAS, M_CTRL, M_FORCE, M_VADR = (
+    range(10)
+)
+"""``index`` array: offsets in the flat view of ``data`` of the robot's first qpos and qvel,
+the TCP and ft site positions and rotations, the arm's first bias force, the robot's first
+actuator control and the ft_force sensor (ft_torque follows); then the robot's first dof
+(a column of ``mj_jacSite``'s Jacobians)."""
+M_SIZE = M_VADR + 1
 
 
 @njit(**_JIT)
@@ -142,28 +147,24 @@ def finger_push(grip: float, left: float, right: float, closed: float) -> tuple[
 
 
 @njit(**_JIT)
-def mujoco_actuate(
-    ctrl: np.ndarray, tau: np.ndarray, grip: float, qpos: np.ndarray, index: np.ndarray
-) -> None:
+def mujoco_actuate(mj: np.ndarray, tau: np.ndarray, grip: float, index: np.ndarray) -> None:
     """Arm torques to the arm motors; each finger motor pushes with the grip force."""
-    first, qa = index[M_CTRL], index[M_QADR]
+    ctrl, qpos = index[M_CTRL], index[M_QPOS]
     for j in range(ARM_DOF):
-        ctrl[first + j] = tau[j]
-    left, right = finger_push(grip, qpos[qa + ARM_DOF], qpos[qa + ARM_DOF + 1], 0.0)
-    ctrl[first + ARM_DOF], ctrl[first + ARM_DOF + 1] = left, right
+        mj[ctrl + j] = tau[j]
+    left, right = finger_push(grip, mj[qpos + ARM_DOF], mj[qpos + ARM_DOF + 1], 0.0)
+    mj[ctrl + ARM_DOF], mj[ctrl + ARM_DOF + 1] = left, right
 
 
 @njit(**_JIT)
-def mujoco_wrist(
-    sensordata: np.ndarray, site_xmat: np.ndarray, index: np.ndarray, raw: np.ndarray
-) -> None:
+def mujoco_wrist(mj: np.ndarray, index: np.ndarray, raw: np.ndarray) -> None:
     """The force/torque sensors (site frame) into world axes with the ft site's rotation."""
-    force, ft = index[M_FORCE], index[M_FT]
+    force, ft = index[M_FORCE], index[M_FT_XMAT]
     for b in range(2):
         for i in range(3):
             total = 0.0
             for m in range(3):
-                total += sensordata[force + 3 * b + m] * site_xmat[ft, 3 * i + m]
+                total += mj[force + 3 * b + m] * mj[ft + 3 * i + m]
             raw[3 * b + i] = total
 
 
@@ -514,30 +515,22 @@ def sense(arm: np.ndarray, s: np.ndarray) -> None:
 
 @njit(**_JIT)
 def mujoco_sense(
-    qpos: np.ndarray,
-    qvel: np.ndarray,
-    site_xpos: np.ndarray,
-    site_xmat: np.ndarray,
-    qfrc_bias: np.ndarray,
-    jacobians: np.ndarray,
-    index: np.ndarray,
-    arm: np.ndarray,
-    s: np.ndarray,
+    mj: np.ndarray, jacobians: np.ndarray, index: np.ndarray, arm: np.ndarray, s: np.ndarray
 ) -> None:
     """The arm state from MuJoCo's data after a step (``jacobians``: ``mj_jacSite`` of the TCP,
     6 x nv), then ``sense`` into the sensing buffer ``s``."""
-    qa, va, tcp, ft = index[M_QADR], index[M_VADR], index[M_TCP], index[M_FT]
+    qpos, qvel, bias, va = index[M_QPOS], index[M_QVEL], index[M_BIAS], index[M_VADR]
     for j in range(NV):
-        arm[STATE + j] = qpos[qa + j]
-        arm[STATE + NV + j] = qvel[va + j]
+        arm[STATE + j] = mj[qpos + j]
+        arm[STATE + NV + j] = mj[qvel + j]
     for i in range(3):
-        arm[POS + i] = site_xpos[tcp, i]
-        arm[FT_POS + i] = site_xpos[ft, i]
+        arm[POS + i] = mj[index[M_TCP_XPOS] + i]
+        arm[FT_POS + i] = mj[index[M_FT_XPOS] + i]
     for i in range(9):
-        arm[ROT + i] = site_xmat[tcp, i]
-        arm[FT_ROT + i] = site_xmat[ft, i]
+        arm[ROT + i] = mj[index[M_TCP_XMAT] + i]
+        arm[FT_ROT + i] = mj[index[M_FT_XMAT] + i]
     for j in range(ARM_DOF):
-        arm[BIAS + j] = qfrc_bias[va + j]
+        arm[BIAS + j] = mj[bias + j]
     for i in range(6):
         total = 0.0
         for j in range(NV):
@@ -557,10 +550,8 @@ def warm_up() -> None:
     spd_inverse(np.eye(ARM_DOF), np.zeros((ARM_DOF, ARM_DOF)))
     joint_torque(arm, np.zeros(JOINT_SIZE), tau)
     sense(arm, np.zeros(SENSE_SIZE))
-    site, sensing = np.zeros((2, 3)), np.zeros(SENSE_SIZE)
-    index = np.array([0, 0, 0, 1, 0, 0], dtype=np.int64)
-    joints, jacobians, rotations = np.zeros(NV), np.zeros((6, NV)), np.zeros((2, 9))
-    mujoco_sense(joints, joints, site, rotations, joints, jacobians, index, arm, sensing)
-    mujoco_actuate(joints, tau, 1.0, joints, index)
-    mujoco_wrist(joints, rotations, index, sensing)
+    mj, index, sensing = np.zeros(4 * NV), np.zeros(M_SIZE, dtype=np.int64), np.zeros(SENSE_SIZE)
+    mujoco_sense(mj, np.zeros((6, NV)), index, arm, sensing)
+    mujoco_actuate(mj, tau, 1.0, index)
+    mujoco_wrist(mj, index, sensing)
     finger_push(1.0, 0.0, 0.0, 0.0)

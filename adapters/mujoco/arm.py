@@ -14,34 +14,31 @@ import numpy as np
 
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters.arm import ArmState
-from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, TCP_SITE
+from lightrocks.adapters.robot_model import ARM_DOF, TCP_SITE
 
 
 class MujocoArm(ArmState):
-    """The robot's joints at ``qadr``/``vadr`` (arm, then fingers, contiguous) in ``data``."""
+    """The robot's joints (arm, then fingers, contiguous) in ``data``, read through the
+    plant's flat view ``mj`` of it at the offsets ``index`` (adapters.kernels.M_*)."""
 
-    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, qadr: int, vadr: int) -> None:
+    def __init__(
+        self, model: mujoco.MjModel, data: mujoco.MjData, mj: np.ndarray, index: np.ndarray
+    ) -> None:
         super().__init__()
-        self._model, self._data = model, data
-        tcp, ft = model.site(TCP_SITE).id, model.site(FT_SITE).id
-        self._tcp = tcp
-        self._index = np.array([qadr, vadr, tcp, ft], dtype=np.int64)
-        self._inputs = (data.qpos, data.qvel, data.site_xpos, data.site_xmat, data.qfrc_bias)
-        """MuJoCo's arrays (views into ``data``, which every step rewrites in place)."""
+        self._model, self._data, self._mj, self._index = model, data, mj, index
+        self._tcp = model.site(TCP_SITE).id
+        va = int(index[k.M_VADR])
         self._jacobians = np.zeros((6, model.nv))
         self._linear, self._angular = self._jacobians[:3], self._jacobians[3:]
         self._mass = np.zeros((model.nv, model.nv))
-        self._arm_mass = self._mass[vadr : vadr + ARM_DOF, vadr : vadr + ARM_DOF]
+        self._arm_mass = self._mass[va : va + ARM_DOF, va : va + ARM_DOF]
         self._sense_only = np.zeros(k.SENSE_SIZE)
         """A scratch sensing buffer for ``update()`` without sensing."""
 
     def _read(self, sensing: np.ndarray) -> None:
         model, data = self._model, self._data
         mujoco.mj_jacSite(model, data, self._linear, self._angular, self._tcp)
-        qpos, qvel, xpos, xmat, bias = self._inputs
-        k.mujoco_sense(
-            qpos, qvel, xpos, xmat, bias, self._jacobians, self._index, self.buffer, sensing
-        )
+        k.mujoco_sense(self._mj, self._jacobians, self._index, self.buffer, sensing)
         if self._slow_tick():
             mujoco.mj_fullM(model, data, self._mass)
             self._set_mass(self._arm_mass)

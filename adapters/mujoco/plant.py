@@ -17,6 +17,7 @@ from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.mujoco.arm import MujocoArm
+from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -28,6 +29,9 @@ from lightrocks.adapters.robot_model import (
     TCP_SITE,
 )
 from lightrocks.adapters.scene_registry import load_model
+
+_ARRAYS = ("qpos", "qvel", "site_xpos", "site_xmat", "qfrc_bias", "ctrl", "sensordata")
+"""The arrays of ``data`` a tick reads or writes."""
 
 
 class MujocoPlant:
@@ -57,14 +61,24 @@ class MujocoPlant:
         if int(sensor("ft_torque").adr[0]) != self._force + 3:
             raise ValueError("sensor ft_torque must follow ft_force in lwr.xml")
         tcp, ft = self.model.site(TCP_SITE).id, self.model.site(FT_SITE).id
-        self._index = np.array([qa, va, tcp, ft, self._ctrl, self._force], dtype=np.int64)
-        """Addresses in ``data`` for the native functions (adapters.kernels)."""
-        self._ctrl_all, self._qpos = self.data.ctrl, self.data.qpos
-        self._sensordata, self._site_xmat = self.data.sensordata, self.data.site_xmat
-        """MuJoCo's arrays, looked up once."""
+        self._mj, at = data_view(self.data, _ARRAYS)
+        """``data`` as one array (see data_view), with the offsets of ``index``."""
+        index = np.zeros(k.M_SIZE, dtype=np.int64)
+        index[k.M_QPOS], index[k.M_QVEL] = at["qpos"] + qa, at["qvel"] + va
+        index[k.M_TCP_XPOS], index[k.M_FT_XPOS] = (
+            at["site_xpos"] + 3 * tcp,
+            at["site_xpos"] + 3 * ft,
+        )
+        index[k.M_TCP_XMAT], index[k.M_FT_XMAT] = (
+            at["site_xmat"] + 9 * tcp,
+            at["site_xmat"] + 9 * ft,
+        )
+        index[k.M_BIAS], index[k.M_CTRL] = at["qfrc_bias"] + va, at["ctrl"] + self._ctrl
+        index[k.M_FORCE], index[k.M_VADR] = at["sensordata"] + self._force, va
+        self._index = index
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
-        self.arm: ArmState = MujocoArm(self.model, self.data, qa, va)
+        self.arm: ArmState = MujocoArm(self.model, self.data, self._mj, self._index)
         self._read_wrist()
         self._begin_step()
 
@@ -74,7 +88,7 @@ class MujocoPlant:
         The finger joint damping sets the finger speed; the force fades out within
         GRIPPER_BAND of the end of travel (see robot_model).
         """
-        k.mujoco_actuate(self._ctrl_all, tau, grip, self._qpos, self._index)
+        k.mujoco_actuate(self._mj, tau, grip, self._index)
         mujoco.mj_step2(self.model, self.data)
         self._read_wrist()
         self._begin_step()
@@ -88,7 +102,7 @@ class MujocoPlant:
     def _read_wrist(self) -> None:
         """Rotate the force/torque sensors into world axes with the site pose they were
         computed at, before ``mj_step1`` moves it."""
-        k.mujoco_wrist(self._sensordata, self._site_xmat, self._index, self.arm.raw)
+        k.mujoco_wrist(self._mj, self._index, self.arm.raw)
 
     def wrist(self) -> np.ndarray:
         """The force/torque sensors (site frame) in world axes: the arm state's ``raw``,

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from lightrocks.adapters.arm import SLOW_EVERY, PinocchioArm
+from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.mujoco.plant import MujocoPlant
 from lightrocks.adapters.robot_model import ARM_DOF, NV, load_robot
 
@@ -72,3 +73,14 @@ def test_arm_states_agree_on_random_configurations() -> None:
             plant.arm.update()
             twin.update()
         _assert_same(plant.arm, twin)
+
+
+def test_the_flat_view_of_the_data_reads_and_writes_mujocos_arrays() -> None:
+    plant = MujocoPlant("screwing")
+    names = ("qpos", "ctrl", "site_xmat", "sensordata")
+    view, at = data_view(plant.data, names)
+    for name in names:
+        array = getattr(plant.data, name).reshape(-1)
+        assert np.array_equal(view[at[name] : at[name] + array.size], array), name
+    view[at["ctrl"] + 2] = 12.5
+    assert plant.data.ctrl[2] == 12.5
