@@ -365,26 +365,35 @@ class SimulatedCell:
         ends = [self.time + c.budget - DT / 2 for c in commands]
         results: list[CommandResult | None] = [None] * len(commands)
         live = self._live
-        ticked = [
+        pending = [
             (index, c, settled, value, _first_holding(c.stop), ends[index])
             for index, (c, (settled, value)) in enumerate(zip(commands, started, strict=True))
         ]
+        remaining = len(pending)
         running = commands[0]
+        tick = self._tick
         try:
-            while None in results:
-                self._tick()
-                for index, c, settled, value, first_holding, end in ticked:
-                    if results[index] is not None:
-                        continue
+            while remaining:
+                tick()
+                now = self.time
+                for entry in pending:
+                    index, c, settled, value, first_holding, end = entry
                     running = c
+                    result = None
                     if settled():
                         fired = first_holding(live)
                         if fired is not None:
-                            results[index] = CommandResult(fired, value)
-                    if results[index] is None and self.time >= end:
-                        results[index] = CommandResult(TIMEOUT)
-                    if results[index] is not None and c.device == "robot" and None in results:
+                            result = CommandResult(fired, value)
+                    if result is None:
+                        if now < end:
+                            continue
+                        result = CommandResult(TIMEOUT)
+                    results[index] = result
+                    remaining -= 1
+                    if c.device == "robot" and remaining:
                         self.hold()  # the other commands go on
+                if len(pending) > remaining:
+                    pending = [entry for entry in pending if results[entry[0]] is None]
         except AdapterError:
             raise
         except Exception as exc:
@@ -515,7 +524,8 @@ class SimulatedCell:
     def _tick(self) -> None:
         self.plant.step(self.controller.torque(self.arm), self.grip)
         self.time += DT
-        self._sense()
+        self.arm.sense()
+        self.wrench_value = None
         if self.recorder is not None:
             self.recorder.tick(self.time, self.plant)
 

@@ -120,7 +120,10 @@ S_TURNED = S_PEAK + 1
 S_YAW = S_TURNED + 1
 S_R0 = S_YAW + 1
 """TCP rotation at command start."""
-SENSE_SIZE = S_R0 + 9
+S_SENSOR_ROT = S_R0 + 9
+"""MuJoCo: the ft site's rotation when the step computed the force/torque sensors, whose
+values are in that frame."""
+SENSE_SIZE = S_SENSOR_ROT + 9
 
 # -- offsets into MuJoCo's data (adapters.mujoco.data_view) for the mujoco_* functions -----------
 M_QPOS, M_QVEL, M_TCP_XPOS, M_TCP_XMAT, M_FT_XPOS, M_FT_XMAT, M_BIAS, M_CTRL, M_FORCE, M_VADR = (
@@ -147,25 +150,19 @@ def finger_push(grip: float, left: float, right: float, closed: float) -> tuple[
 
 
 @njit(**_JIT)
-def mujoco_actuate(mj: np.ndarray, tau: np.ndarray, grip: float, index: np.ndarray) -> None:
-    """Arm torques to the arm motors; each finger motor pushes with the grip force."""
+def mujoco_actuate(
+    mj: np.ndarray, tau: np.ndarray, grip: float, index: np.ndarray, s: np.ndarray
+) -> None:
+    """Before a step: arm torques to the arm motors, each finger motor pushes with the grip
+    force; and the ft site's rotation, at which the step computes the wrist sensors, is kept
+    (the next ``mj_step1`` moves the site)."""
     ctrl, qpos = index[M_CTRL], index[M_QPOS]
     for j in range(ARM_DOF):
         mj[ctrl + j] = tau[j]
     left, right = finger_push(grip, mj[qpos + ARM_DOF], mj[qpos + ARM_DOF + 1], 0.0)
     mj[ctrl + ARM_DOF], mj[ctrl + ARM_DOF + 1] = left, right
-
-
-@njit(**_JIT)
-def mujoco_wrist(mj: np.ndarray, index: np.ndarray, raw: np.ndarray) -> None:
-    """The force/torque sensors (site frame) into world axes with the ft site's rotation."""
-    force, ft = index[M_FORCE], index[M_FT_XMAT]
-    for b in range(2):
-        for i in range(3):
-            total = 0.0
-            for m in range(3):
-                total += mj[force + 3 * b + m] * mj[ft + 3 * i + m]
-            raw[3 * b + i] = total
+    for i in range(9):
+        s[S_SENSOR_ROT + i] = mj[index[M_FT_XMAT] + i]
 
 
 @njit(**_JIT)
@@ -518,7 +515,8 @@ def mujoco_sense(
     mj: np.ndarray, jacobians: np.ndarray, index: np.ndarray, arm: np.ndarray, s: np.ndarray
 ) -> None:
     """The arm state from MuJoCo's data after a step (``jacobians``: ``mj_jacSite`` of the TCP,
-    6 x nv), then ``sense`` into the sensing buffer ``s``."""
+    6 x nv), the raw wrist reading (see ``mujoco_actuate``), then ``sense`` into the sensing
+    buffer ``s``."""
     qpos, qvel, bias, va = index[M_QPOS], index[M_QVEL], index[M_BIAS], index[M_VADR]
     for j in range(NV):
         arm[STATE + j] = mj[qpos + j]
@@ -538,6 +536,13 @@ def mujoco_sense(
         arm[TWIST + i] = total
         for j in range(ARM_DOF):
             arm[JAC + i * ARM_DOF + j] = jacobians[i, va + j]
+    force = index[M_FORCE]  # the wrist sensors (site frame) into world axes
+    for b in range(2):
+        for i in range(3):
+            total = 0.0
+            for m in range(3):
+                total += mj[force + 3 * b + m] * s[S_SENSOR_ROT + 3 * i + m]
+            s[S_RAW + 3 * b + i] = total
     sense(arm, s)
 
 
@@ -552,6 +557,5 @@ def warm_up() -> None:
     sense(arm, np.zeros(SENSE_SIZE))
     mj, index, sensing = np.zeros(4 * NV), np.zeros(M_SIZE, dtype=np.int64), np.zeros(SENSE_SIZE)
     mujoco_sense(mj, np.zeros((6, NV)), index, arm, sensing)
-    mujoco_actuate(mj, tau, 1.0, index)
-    mujoco_wrist(mj, index, sensing)
+    mujoco_actuate(mj, tau, 1.0, index, sensing)
     finger_push(1.0, 0.0, 0.0, 0.0)

@@ -32,19 +32,21 @@ class MujocoArm(ArmState):
         self._linear, self._angular = self._jacobians[:3], self._jacobians[3:]
         self._mass = np.zeros((model.nv, model.nv))
         self._arm_mass = self._mass[va : va + ARM_DOF, va : va + ARM_DOF]
-        self._sense_only = np.zeros(k.SENSE_SIZE)
-        """A scratch sensing buffer for ``update()`` without sensing."""
+        self._scratch = np.zeros(k.SENSE_SIZE)
+        """The sensing buffer of ``update()``, which leaves the wrist sensing alone."""
+
+    def update(self) -> None:
+        self._read(self._scratch)
+
+    def sense(self) -> None:
+        self._read(self.sensing)
 
     def _read(self, sensing: np.ndarray) -> None:
+        """One ``mj_jacSite`` and one native call: the arm state, then the wrist sensing into
+        ``sensing``."""
         model, data = self._model, self._data
         mujoco.mj_jacSite(model, data, self._linear, self._angular, self._tcp)
         k.mujoco_sense(self._mj, self._jacobians, self._index, self.buffer, sensing)
         if self._slow_tick():
             mujoco.mj_fullM(model, data, self._mass)
             self._set_mass(self._arm_mass)
-
-    def update(self) -> None:
-        self._read(self._sense_only)
-
-    def sense(self) -> None:
-        self._read(self.sensing)

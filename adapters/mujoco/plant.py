@@ -79,34 +79,31 @@ class MujocoPlant:
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
         self.arm: ArmState = MujocoArm(self.model, self.data, self._mj, self._index)
-        self._read_wrist()
-        self._begin_step()
-
-    def step(self, tau: np.ndarray, grip: float) -> None:
-        """Arm torques straight to the motors; each finger pushes with the grip force.
-
-        The finger joint damping sets the finger speed; the force fades out within
-        GRIPPER_BAND of the end of travel (see robot_model).
-        """
-        k.mujoco_actuate(self._mj, tau, grip, self._index)
-        mujoco.mj_step2(self.model, self.data)
-        self._read_wrist()
-        self._begin_step()
-
-    def _begin_step(self) -> None:
-        """The scene's hook, then the first half of the next step."""
+        self._sensing = self.arm.sensing
+        self._sensing[k.S_SENSOR_ROT : k.S_SENSOR_ROT + 9] = self.data.site_xmat[ft]
         if self._scene_step is not None:
             self._scene_step(self.model, self.data)
         mujoco.mj_step1(self.model, self.data)
 
-    def _read_wrist(self) -> None:
-        """Rotate the force/torque sensors into world axes with the site pose they were
-        computed at, before ``mj_step1`` moves it."""
-        k.mujoco_wrist(self._mj, self._index, self.arm.raw)
+    def step(self, tau: np.ndarray, grip: float) -> None:
+        """Arm torques straight to the motors; each finger pushes with the grip force; then
+        the second half of this step, the scene's hook and the first half of the next step.
+        The arm state rotates the wrist reading into world axes with the site pose the step
+        computed it at (see adapters.kernels.mujoco_actuate).
+
+        The finger joint damping sets the finger speed; the force fades out within
+        GRIPPER_BAND of the end of travel (see robot_model).
+        """
+        model, data = self.model, self.data
+        k.mujoco_actuate(self._mj, tau, grip, self._index, self._sensing)
+        mujoco.mj_step2(model, data)
+        if self._scene_step is not None:
+            self._scene_step(model, data)
+        mujoco.mj_step1(model, data)
 
     def wrist(self) -> np.ndarray:
         """The force/torque sensors (site frame) in world axes: the arm state's ``raw``,
-        rewritten by every step."""
+        which its ``sense()``/``update()`` after every step rewrites."""
         return self.arm.raw
 
     def sync(self) -> None:
