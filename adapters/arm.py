@@ -1,11 +1,10 @@
 """The robot at the current tick, as the controllers and the wrist sensing read it.
 
 Each plant keeps one :class:`ArmState` current from its own physics: ``sense()`` once per
-tick, after the step (``update()`` alone refreshes the kinematics and dynamics without the
-wrist sensing). The MuJoCo plant reads what its step has already computed (see
-``adapters.mujoco.arm``); the twin computes it with Pinocchio (:class:`PinocchioArm`). Both give
-the same numbers to rounding (tests/adapters/test_robot_model.py), so the controllers do not
-care which one they read.
+tick, after the step (``update()`` takes the state without advancing the wrist sensing). The
+MuJoCo plant reads what its step has already computed (see ``adapters.mujoco.arm``); the twin
+computes it with Pinocchio (:class:`PinocchioArm`). Both give the same numbers to rounding
+(tests/adapters/test_robot_model.py), so the controllers do not care which one they read.
 """
 
 from __future__ import annotations
@@ -73,12 +72,12 @@ class ArmState(ABC):
 
     @abstractmethod
     def update(self) -> None:
-        """Take the plant's state of this tick."""
+        """Take the plant's state of this tick (the wrist sensing is left alone)."""
 
+    @abstractmethod
     def sense(self) -> None:
-        """``update()``, then the wrist sensing of ``raw`` (adapters.kernels.sense)."""
-        self.update()
-        k.sense(self.buffer, self.sensing)
+        """Take the plant's state of this tick, then the wrist sensing of ``raw``
+        (adapters.kernels.sense), in one native call."""
 
     def _slow_tick(self) -> bool:
         """Whether this tick refreshes the mass matrix; counts the tick."""
@@ -93,38 +92,47 @@ class ArmState(ABC):
 
 
 class PinocchioArm(ArmState):
-    """Computes the arm state with Pinocchio from joint arrays that the plant updates in
-    place: one ``computeJointJacobians`` (which includes the forward kinematics) serves the
-    TCP and ft placements and the TCP Jacobian."""
+    """Computes the arm state with Pinocchio: one ``computeJointJacobians`` (which includes
+    the forward kinematics) serves the TCP and ft placements and the TCP Jacobian; one native
+    call copies Pinocchio's results (read through views of its data made once) and does the
+    wrist sensing.
 
-    def __init__(self, model: pin.Model, q: np.ndarray, v: np.ndarray) -> None:
+    The joint state is ``q``/``v`` of this arm state, which the twin's plant integrates in
+    place; given ``q`` and ``v`` arrays of another owner, each update copies them first.
+    """
+
+    def __init__(
+        self, model: pin.Model, q: np.ndarray | None = None, v: np.ndarray | None = None
+    ) -> None:
         super().__init__()
         self.model = model
-        self.data = model.createData()
-        self._joint_q = q
-        self._joint_v = v
+        self.data = data = model.createData()
+        self._joints = None if q is None or v is None else (q, v)
         self._tcp_id = model.getFrameId(TCP_SITE)
         self._ft_id = model.getFrameId(FT_SITE)
-        self._tcp = self.data.oMf[self._tcp_id]
-        self._ft = self.data.oMf[self._ft_id]
-        """References into ``data`` that every update moves."""
+        tcp, ft = data.oMf[self._tcp_id], data.oMf[self._ft_id]
+        self._results = (tcp.rotation, tcp.translation, ft.rotation, ft.translation)
+        """Views into ``data`` that every update rewrites."""
+        self._nle = data.nle
+        self._scratch = np.zeros(k.SENSE_SIZE)
+        """The sensing buffer of ``update()``, which leaves the wrist sensing alone."""
 
     def update(self) -> None:
-        model, data = self.model, self.data
-        self.q[:] = self._joint_q
-        self.v[:] = self._joint_v
-        pin.computeJointJacobians(model, data, self.q)
+        self._read(self._scratch)
+
+    def sense(self) -> None:
+        self._read(self.sensing)
+
+    def _read(self, sensing: np.ndarray) -> None:
+        model, data, q, v = self.model, self.data, self.q, self.v
+        if self._joints is not None:
+            q[:], v[:] = self._joints
+        pin.computeJointJacobians(model, data, q)
         pin.updateFramePlacement(model, data, self._tcp_id)
         pin.updateFramePlacement(model, data, self._ft_id)
-        tcp, ft = self._tcp, self._ft
-        self.position[:] = tcp.translation
-        self.rotation[:] = tcp.rotation
-        self.ft_position[:] = ft.translation
-        self.ft_rotation[:] = ft.rotation
         jacobian = pin.getFrameJacobian(model, data, self._tcp_id, pin.LOCAL_WORLD_ALIGNED)
-        self.jacobian[:] = jacobian[:, :ARM_DOF]
-        np.matmul(jacobian, self.v, out=self.twist)
-        self.bias[:] = pin.nonLinearEffects(model, data, self.q, self.v)[:ARM_DOF]
+        pin.nonLinearEffects(model, data, q, v)
+        k.pinocchio_sense(self.buffer, sensing, *self._results, jacobian, self._nle)
         if self._slow_tick():
-            mass = pin.crba(model, data, self.q)[:ARM_DOF, :ARM_DOF]
+            mass = pin.crba(model, data, q)[:ARM_DOF, :ARM_DOF]
             self._set_mass(symmetrize_upper(mass.copy(), _LOWER))

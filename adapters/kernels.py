@@ -125,6 +125,18 @@ S_SENSOR_ROT = S_R0 + 9
 values are in that frame."""
 SENSE_SIZE = S_SENSOR_ROT + 9
 
+# -- the Pinocchio twin's buffer (adapters.pinocchio.plant.PinocchioPlant) -------------------------
+T_DAMPING = 0
+"""Minus the joint damping of the robot joints."""
+T_LOAD = T_DAMPING + NV
+T_LOAD_COM = T_LOAD + 3
+"""Weight of the hand subtree [N] and its centre of mass in the ft frame."""
+T_CONTACT = T_LOAD_COM + 3
+"""Contact wrench on the hand subtree at the ft site, world axes."""
+T_GENERALIZED = T_CONTACT + 6
+"""Generalized forces of the robot joints."""
+TWIN_SIZE = T_GENERALIZED + NV
+
 # -- offsets into MuJoCo's data (adapters.mujoco.data_view) for the mujoco_* functions -----------
 M_QPOS, M_QVEL, M_TCP_XPOS, M_TCP_XMAT, M_FT_XPOS, M_FT_XMAT, M_BIAS, M_CTRL, M_FORCE, M_VADR = (
     range(10)
@@ -546,6 +558,112 @@ def mujoco_sense(
     sense(arm, s)
 
 
+@njit(**_JIT)
+def pinocchio_sense(
+    arm: np.ndarray,
+    s: np.ndarray,
+    tcp_rotation: np.ndarray,
+    tcp_position: np.ndarray,
+    ft_rotation: np.ndarray,
+    ft_position: np.ndarray,
+    jacobian: np.ndarray,
+    nle: np.ndarray,
+) -> None:
+    """The arm state from Pinocchio's results (placements, the TCP's LOCAL_WORLD_ALIGNED
+    Jacobian, 6 x NV, and the nonlinear effects), then ``sense`` into the sensing buffer."""
+    for i in range(3):
+        arm[POS + i] = tcp_position[i]
+        arm[FT_POS + i] = ft_position[i]
+        for j in range(3):
+            arm[ROT + 3 * i + j] = tcp_rotation[i, j]
+            arm[FT_ROT + 3 * i + j] = ft_rotation[i, j]
+    for j in range(ARM_DOF):
+        arm[BIAS + j] = nle[j]
+    for i in range(6):
+        total = 0.0
+        for j in range(NV):
+            total += jacobian[i, j] * arm[STATE + NV + j]
+        arm[TWIST + i] = total
+        for j in range(ARM_DOF):
+            arm[JAC + i * ARM_DOF + j] = jacobian[i, j]
+    sense(arm, s)
+
+
+@njit(**_JIT)
+def twin_forces(
+    arm: np.ndarray,
+    twin: np.ndarray,
+    tau: np.ndarray,
+    hand_position: np.ndarray,
+    reach: np.ndarray,
+    near: np.ndarray,
+) -> int:
+    """Start of a twin step: generalized forces ``−damping q̇ + τ`` and no contact yet; flags
+    the static boxes whose reach (rows: x, y, z low, then high) holds the hand origin in
+    ``near`` and returns how many."""
+    for j in range(NV):
+        twin[T_GENERALIZED + j] = twin[T_DAMPING + j] * arm[STATE + NV + j]
+    for j in range(ARM_DOF):
+        twin[T_GENERALIZED + j] += tau[j]
+    for i in range(6):
+        twin[T_CONTACT + i] = 0.0
+    x, y, z = hand_position[0], hand_position[1], hand_position[2]
+    count = 0
+    for b in range(reach.shape[0]):
+        box = reach[b]
+        inside = box[0] < x < box[3] and box[1] < y < box[4] and box[2] < z < box[5]
+        near[b] = inside
+        count += inside
+    return count
+
+
+@njit(**_JIT)
+def twin_integrate(
+    arm: np.ndarray,
+    s: np.ndarray,
+    twin: np.ndarray,
+    acceleration: np.ndarray,
+    ft_rotation: np.ndarray,
+    finger_speed: float,
+    grasp: float,
+    left_blocked: bool,
+    right_blocked: bool,
+) -> None:
+    """End of a twin step: semi-implicit Euler of the arm joints, the first-order fingers
+    (``finger_speed`` = grip force / finger damping; a blocked finger does not close), and
+    ``twin_wrist`` (ft pose of the step's start)."""
+    for j in range(ARM_DOF):
+        arm[STATE + NV + j] += DT * acceleration[j]
+        arm[STATE + j] += DT * arm[STATE + NV + j]
+    left, right = finger_push(finger_speed, arm[STATE + ARM_DOF], arm[STATE + ARM_DOF + 1], grasp)
+    if left_blocked and left < 0:
+        left = 0.0
+    if right_blocked and right < 0:
+        right = 0.0
+    arm[STATE + NV + ARM_DOF], arm[STATE + NV + ARM_DOF + 1] = left, right
+    arm[STATE + ARM_DOF] += DT * left
+    arm[STATE + ARM_DOF + 1] += DT * right
+    twin_wrist(s, twin, ft_rotation)
+
+
+@njit(**_JIT)
+def twin_wrist(s: np.ndarray, twin: np.ndarray, ft_rotation: np.ndarray) -> None:
+    """The twin's quasi-static wrist reading into ``s``: what link7 must exert to hold the load
+    against the contacts."""
+    com = twin[T_LOAD_COM : T_LOAD_COM + 3]
+    lx = ft_rotation[0, 0] * com[0] + ft_rotation[0, 1] * com[1] + ft_rotation[0, 2] * com[2]
+    ly = ft_rotation[1, 0] * com[0] + ft_rotation[1, 1] * com[1] + ft_rotation[1, 2] * com[2]
+    lz = ft_rotation[2, 0] * com[0] + ft_rotation[2, 1] * com[1] + ft_rotation[2, 2] * com[2]
+    wx, wy, wz = twin[T_LOAD], twin[T_LOAD + 1], twin[T_LOAD + 2]
+    c = twin[T_CONTACT : T_CONTACT + 6]
+    s[S_RAW] = -c[0] - wx
+    s[S_RAW + 1] = -c[1] - wy
+    s[S_RAW + 2] = -c[2] - wz
+    s[S_RAW + 3] = -c[3] - (ly * wz - lz * wy)
+    s[S_RAW + 4] = -c[4] - (lz * wx - lx * wz)
+    s[S_RAW + 5] = -c[5] - (lx * wy - ly * wx)
+
+
 def warm_up() -> None:
     """Compile (or load from the cache) every kernel now, on scratch buffers, so that the
     first command does not pay for it inside its control loop."""
@@ -559,3 +677,9 @@ def warm_up() -> None:
     mujoco_sense(mj, np.zeros((6, NV)), index, arm, sensing)
     mujoco_actuate(mj, tau, 1.0, index, sensing)
     finger_push(1.0, 0.0, 0.0, 0.0)
+    rotation, position = np.asfortranarray(np.eye(3)), np.zeros(3)  # Pinocchio's are Fortran
+    jacobian = np.asfortranarray(np.zeros((6, NV)))
+    pinocchio_sense(arm, sensing, rotation, position, rotation, position, jacobian, np.zeros(NV))
+    twin = np.zeros(TWIN_SIZE)
+    twin_forces(arm, twin, tau, position, np.zeros((1, 6)), np.zeros(1, dtype=np.bool_))
+    twin_integrate(arm, sensing, twin, tau, rotation, 0.1, 0.0, False, False)
