@@ -85,7 +85,9 @@ C_POSTURE = C_RATIO + 6
 C_TICKS = C_POSTURE + ARM_DOF
 """Ticks run so far: the slow terms are refreshed on every SLOW_EVERY-th, starting with the
 first."""
-CARTESIAN_SIZE = C_TICKS + 1
+C_SCRATCH = C_TICKS + 1
+"""Room for the intermediate results of a tick (no allocation per tick)."""
+CARTESIAN_SIZE = C_SCRATCH + 48
 
 SLOW_EVERY = 10
 """Ticks between refreshes of the mass matrix and of what the controllers derive from it, which
@@ -219,10 +221,10 @@ def _theta_axis(i0: int, val: float, r: np.ndarray, axis: np.ndarray) -> float:
 
 
 @njit(**_JIT)
-def log3(r_in: np.ndarray, out: np.ndarray) -> None:
+def log3(r_in: np.ndarray, out: np.ndarray, r: np.ndarray) -> None:
     """Rotation vector of a rotation matrix (Pinocchio's ``log3``, including its
-    renormalisation and its branches near 0 and π) into ``out`` (3)."""
-    r = np.empty((3, 3))
+    renormalisation and its branches near 0 and π) into ``out`` (3); ``r`` (3 x 3) is scratch
+    space."""
     n0 = math.sqrt(r_in[0, 0] ** 2 + r_in[1, 0] ** 2 + r_in[2, 0] ** 2)
     n1 = math.sqrt(r_in[0, 1] ** 2 + r_in[1, 1] ** 2 + r_in[2, 1] ** 2)
     for i in range(3):
@@ -406,13 +408,15 @@ def cartesian_torque(arm: np.ndarray, mass_inv: np.ndarray, c: np.ndarray, tau: 
     jac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
     twist = c[C_FRAME_TWIST : C_FRAME_TWIST + 6]
     errors = c[C_ERRORS : C_ERRORS + 9].reshape(3, 3)
-    r_set = np.empty((3, 3))
+    scratch = c[C_SCRATCH : C_SCRATCH + 48]
+    r_set, turn = scratch[0:9].reshape(3, 3), scratch[9:18].reshape(3, 3)
+    error, normed = scratch[18:27].reshape(3, 3), scratch[27:36].reshape(3, 3)
+    wrench, world = scratch[36:42], scratch[42:48]
     if moving:
         for i in range(3):
             errors[0, i] = c[C_P0 + i] + s * c[C_DP + i] - pos[i]
         for i in range(6):
             errors[1 + i // 3, i % 3] = c[C_TWSET + i] - twist[i]
-        turn = np.empty((3, 3))
         exp3(s * c[C_DR], s * c[C_DR + 1], s * c[C_DR + 2], turn)
         r0 = c[C_R0 : C_R0 + 9].reshape(3, 3)
         for i in range(3):
@@ -430,20 +434,17 @@ def cartesian_torque(arm: np.ndarray, mass_inv: np.ndarray, c: np.ndarray, tau: 
             local[i, j] = (
                 errors[i, 0] * rot[0, j] + errors[i, 1] * rot[1, j] + errors[i, 2] * rot[2, j]
             )
-    error = np.empty((3, 3))
     for i in range(3):  # Rᵀ R_set
         for j in range(3):
             error[i, j] = (
                 rot[0, i] * r_set[0, j] + rot[1, i] * r_set[1, j] + rot[2, i] * r_set[2, j]
             )
     e_rot = c[C_EROT : C_EROT + 3]
-    log3(error, e_rot)
-    wrench = np.empty(6)  # K e + D ė in task axes, force then torque
-    for i in range(3):
+    log3(error, e_rot, normed)
+    for i in range(3):  # K e + D ė in task axes, force then torque
         wrench[i] = c[C_K + i] * local[0, i] + c[C_D + i] * local[1, i]
         wrench[3 + i] = c[C_K + 3 + i] * e_rot[i] + c[C_D + 3 + i] * local[2, i]
-    world = np.empty(6)  # back to world axes, per 3-block
-    for b in range(2):
+    for b in range(2):  # back to world axes, per 3-block
         for i in range(3):
             world[3 * b + i] = (
                 wrench[3 * b] * rot[i, 0]

@@ -60,10 +60,14 @@ class Wrench:
     def of_floats(cls, fx: float, fy: float, fz: float, tx: float, ty: float, tz: float) -> Wrench:
         """``Wrench`` of six floats without the frozen dataclasses' ``__init__`` (see
         ``Vector3.of_floats``)."""
-        wrench = object.__new__(cls)
+        new = object.__new__
+        wrench, force, torque = new(cls), new(Vector3), new(Vector3)
+        fields = force.__dict__
+        fields["x"], fields["y"], fields["z"] = fx, fy, fz
+        fields = torque.__dict__
+        fields["x"], fields["y"], fields["z"] = tx, ty, tz
         fields = wrench.__dict__
-        fields["force"] = Vector3.of_floats(fx, fy, fz)
-        fields["torque"] = Vector3.of_floats(tx, ty, tz)
+        fields["force"], fields["torque"] = force, torque
         return wrench
 
 
