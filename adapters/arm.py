@@ -29,10 +29,11 @@ class ArmState(ABC):
     native tick functions read; the attributes are views of it. ``jacobian`` is the TCP
     Jacobian of the arm joints, LOCAL_WORLD_ALIGNED: its rows are the linear velocity of the
     TCP point and the angular velocity, in world axes. ``bias`` holds the Coriolis,
-    centrifugal and gravity torques of the arm joints. ``mass_inv`` and ``mass_diag`` are
-    replaced (not modified) every SLOW_EVERY ticks, so that controllers can cache what they
-    derive from them on identity. ``sensing`` is the wrist sensing's buffer
-    (adapters.sensing), kept here so that one native call updates both.
+    centrifugal and gravity torques of the arm joints. ``mass_inv`` is refreshed in place every
+    SLOW_EVERY ticks; ``mass_diag`` is replaced then (not modified), so that controllers can
+    cache what they derive from it on identity. ``tau`` receives the controller's torques.
+    ``sensing`` is the wrist sensing's block (adapters.sensing), kept in the same buffer so that
+    one native call updates both.
     """
 
     def __init__(self) -> None:
@@ -52,9 +53,11 @@ class ArmState(ABC):
         self.jacobian = buffer[k.JAC : k.JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
         self.twist = buffer[k.TWIST : k.TWIST + 6]
         self.bias = buffer[k.BIAS : k.BIAS + ARM_DOF]
-        self.mass_inv = np.eye(ARM_DOF)
+        self.mass_inv = buffer[k.MASS_INV : k.MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, -1)
+        self.mass_inv[:] = np.eye(ARM_DOF)
+        self.tau = buffer[k.TAU : k.TAU + ARM_DOF]
         self.mass_diag = np.ones(ARM_DOF)
-        self.sensing = np.zeros(k.SENSE_SIZE)
+        self.sensing = buffer[k.SENSING :]
         self.raw = self.sensing[k.S_RAW : k.S_RAW + 6]
         """The raw wrist reading, which the plant writes after each step."""
         self._tick = 0
@@ -86,7 +89,6 @@ class ArmState(ABC):
 
     def _set_mass(self, arm_mass: np.ndarray) -> None:
         """Take the (symmetric) mass matrix of the arm joints."""
-        self.mass_inv = np.empty((ARM_DOF, ARM_DOF))
         k.spd_inverse(arm_mass, self.mass_inv)
         self.mass_diag = np.diag(arm_mass).copy()
 
@@ -114,16 +116,14 @@ class PinocchioArm(ArmState):
         self._results = (tcp.rotation, tcp.translation, ft.rotation, ft.translation)
         """Views into ``data`` that every update rewrites."""
         self._nle = data.nle
-        self._scratch = np.zeros(k.SENSE_SIZE)
-        """The sensing buffer of ``update()``, which leaves the wrist sensing alone."""
 
     def update(self) -> None:
-        self._read(self._scratch)
+        self._read(False)
 
     def sense(self) -> None:
-        self._read(self.sensing)
+        self._read(True)
 
-    def _read(self, sensing: np.ndarray) -> None:
+    def _read(self, wrist: bool) -> None:
         model, data, q, v = self.model, self.data, self.q, self.v
         if self._joints is not None:
             q[:], v[:] = self._joints
@@ -132,7 +132,7 @@ class PinocchioArm(ArmState):
         pin.updateFramePlacement(model, data, self._ft_id)
         jacobian = pin.getFrameJacobian(model, data, self._tcp_id, pin.LOCAL_WORLD_ALIGNED)
         pin.nonLinearEffects(model, data, q, v)
-        k.pinocchio_sense(self.buffer, sensing, *self._results, jacobian, self._nle)
+        k.pinocchio_sense(self.buffer, *self._results, jacobian, self._nle, wrist)
         if self._slow_tick():
             mass = pin.crba(model, data, q)[:ARM_DOF, :ARM_DOF]
             self._set_mass(symmetrize_upper(mass.copy(), _LOWER))

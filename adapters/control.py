@@ -82,7 +82,6 @@ class CartesianImpedance:
         self._local = b[k.C_LOCAL : k.C_LOCAL + 9].reshape(3, 3)
         """Position error, linear and angular error velocity (rows) in task axes."""
         self._e_rot = b[k.C_EROT : k.C_EROT + 3]
-        self._tau = np.zeros(ARM_DOF)
 
     @property
     def elapsed(self) -> float:
@@ -90,10 +89,10 @@ class CartesianImpedance:
         return float(self._buffer[k.C_ELAPSED])
 
     def torque(self, arm: ArmState) -> np.ndarray:
-        """Joint torques of the arm for this tick (an array reused every tick); advances the
-        set point by one DT."""
-        k.cartesian_torque(arm.buffer, arm.mass_inv, self._buffer, self._tau)
-        return self._tau
+        """Joint torques of the arm for this tick (the arm state's ``tau``); advances the set
+        point by one DT."""
+        k.cartesian_torque(arm.buffer, self._buffer)
+        return arm.tau
 
     def reached(self, arm: ArmState) -> bool:
         """Interpolation done, within 1 mm and 0.5° of the final goal and nearly at rest."""
@@ -133,7 +132,6 @@ class JointImpedance:
         b[k.J_DURATION] = self.duration
         self._mass_diag: np.ndarray | None = None
         self._damping = b[k.J_D : k.J_D + ARM_DOF]
-        self._tau = np.zeros(ARM_DOF)
 
     @property
     def elapsed(self) -> float:
@@ -141,12 +139,12 @@ class JointImpedance:
         return float(self._buffer[k.J_ELAPSED])
 
     def torque(self, arm: ArmState) -> np.ndarray:
-        """Joint torques of the arm for this tick (an array reused every tick)."""
+        """Joint torques of the arm for this tick (the arm state's ``tau``)."""
         if arm.mass_diag is not self._mass_diag:
             self._mass_diag = arm.mass_diag
             self._damping[:] = 2.0 * self.ratio * np.sqrt(self.stiffness * arm.mass_diag)
-        k.joint_torque(arm.buffer, self._buffer, self._tau)
-        return self._tau
+        k.joint_torque(arm.buffer, self._buffer)
+        return arm.tau
 
     def reached(self, arm: ArmState) -> bool:
         """Every joint within 0.5° of the goal and nearly at rest."""

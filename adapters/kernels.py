@@ -47,7 +47,12 @@ TWIST = FT_ROT + 9
 BIAS = TWIST + 6
 JAC = BIAS + ARM_DOF
 """TCP Jacobian of the arm joints, 6 x ARM_DOF, row-major. Rotations are row-major too."""
-ARM_SIZE = JAC + 6 * ARM_DOF
+MASS_INV = JAC + 6 * ARM_DOF
+"""Inverse of the arm block of the mass matrix, refreshed every SLOW_EVERY ticks."""
+TAU = MASS_INV + ARM_DOF * ARM_DOF
+"""The controller's arm torques for the next step."""
+SENSING = TAU + ARM_DOF
+"""Start of the sensing block (offsets S_* below, relative to it)."""
 
 # -- the Cartesian impedance buffer (adapters.control.CartesianImpedance) -------------------------
 C_K = 0
@@ -126,6 +131,7 @@ S_SENSOR_ROT = S_R0 + 9
 """MuJoCo: the ft site's rotation when the step computed the force/torque sensors, whose
 values are in that frame."""
 SENSE_SIZE = S_SENSOR_ROT + 9
+ARM_SIZE = SENSING + SENSE_SIZE
 
 # -- the Pinocchio twin's buffer (adapters.pinocchio.plant.PinocchioPlant) -------------------------
 T_DAMPING = 0
@@ -164,15 +170,13 @@ def finger_push(grip: float, left: float, right: float, closed: float) -> tuple[
 
 
 @njit(**_JIT)
-def mujoco_actuate(
-    mj: np.ndarray, tau: np.ndarray, grip: float, index: np.ndarray, s: np.ndarray
-) -> None:
+def mujoco_actuate(mj: np.ndarray, arm: np.ndarray, grip: float, index: np.ndarray) -> None:
     """Before a step: arm torques to the arm motors, each finger motor pushes with the grip
     force; and the ft site's rotation, at which the step computes the wrist sensors, is kept
     (the next ``mj_step1`` moves the site)."""
-    ctrl, qpos = index[M_CTRL], index[M_QPOS]
+    ctrl, qpos, s = index[M_CTRL], index[M_QPOS], arm[SENSING:]
     for j in range(ARM_DOF):
-        mj[ctrl + j] = tau[j]
+        mj[ctrl + j] = arm[TAU + j]
     left, right = finger_push(grip, mj[qpos + ARM_DOF], mj[qpos + ARM_DOF + 1], 0.0)
     mj[ctrl + ARM_DOF], mj[ctrl + ARM_DOF + 1] = left, right
     for i in range(9):
@@ -362,11 +366,15 @@ def cartesian_frame(arm: np.ndarray, c: np.ndarray) -> None:
     fpos = c[C_FRAME_POS : C_FRAME_POS + 3]
     fjac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
     ftwist = c[C_FRAME_TWIST : C_FRAME_TWIST + 6]
-    if c[C_OFFSET] == 0.0:
-        frot[:] = rot
-        fpos[:] = pos
-        fjac[:] = jac
-        ftwist[:] = arm[TWIST : TWIST + 6]
+    if c[C_OFFSET] == 0.0:  # element loops: numba's slice assignment checks for overlap
+        for i in range(9):
+            c[C_FRAME_ROT + i] = arm[ROT + i]
+        for i in range(3):
+            c[C_FRAME_POS + i] = arm[POS + i]
+        for i in range(6 * ARM_DOF):
+            c[C_FRAME_JAC + i] = arm[JAC + i]
+        for i in range(6):
+            c[C_FRAME_TWIST + i] = arm[TWIST + i]
         return
     task_r = c[C_TASK_R : C_TASK_R + 9].reshape(3, 3)
     task_p = c[C_TASK_P : C_TASK_P + 3]
@@ -391,9 +399,10 @@ def cartesian_frame(arm: np.ndarray, c: np.ndarray) -> None:
 
 
 @njit(**_JIT)
-def cartesian_torque(arm: np.ndarray, mass_inv: np.ndarray, c: np.ndarray, tau: np.ndarray) -> None:
-    """One tick of Cartesian impedance (see adapters.control.CartesianImpedance) into ``tau``;
-    advances the set point by DT and refreshes the slow terms every SLOW_EVERY ticks."""
+def cartesian_torque(arm: np.ndarray, c: np.ndarray) -> None:
+    """One tick of Cartesian impedance (see adapters.control.CartesianImpedance) into the arm
+    state's TAU; advances the set point by DT and refreshes the slow terms every SLOW_EVERY
+    ticks."""
     duration, elapsed = c[C_DURATION], c[C_ELAPSED]
     s = 1.0 if duration <= 0 else min(elapsed / duration, 1.0)
     c[C_ELAPSED] = elapsed + DT
@@ -401,7 +410,7 @@ def cartesian_torque(arm: np.ndarray, mass_inv: np.ndarray, c: np.ndarray, tau: 
     c[C_MOVING] = 1.0 if moving else 0.0
     cartesian_frame(arm, c)
     if c[C_TICKS] % SLOW_EVERY == 0:
-        cartesian_refresh(mass_inv, c)
+        cartesian_refresh(arm[MASS_INV : MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, ARM_DOF), c)
     c[C_TICKS] += 1
     rot = c[C_FRAME_ROT : C_FRAME_ROT + 9].reshape(3, 3)
     pos = c[C_FRAME_POS : C_FRAME_POS + 3]
@@ -427,7 +436,8 @@ def cartesian_torque(arm: np.ndarray, mass_inv: np.ndarray, c: np.ndarray, tau: 
             errors[0, i] = c[C_PGOAL + i] - pos[i]
         for i in range(6):
             errors[1 + i // 3, i % 3] = -twist[i]
-        r_set[:] = c[C_RGOAL : C_RGOAL + 9].reshape(3, 3)
+        for i in range(9):
+            scratch[i] = c[C_RGOAL + i]  # r_set
     local = c[C_LOCAL : C_LOCAL + 9].reshape(3, 3)
     for i in range(3):  # row i: Rᵀ errors[i]
         for j in range(3):
@@ -459,19 +469,22 @@ def cartesian_torque(arm: np.ndarray, mass_inv: np.ndarray, c: np.ndarray, tau: 
         posture = 0.0
         for m in range(2 * NV):
             posture += ns[j, m] * arm[STATE + m]
-        tau[j] = total + arm[BIAS + j] + c[C_NS_POSTURE + j] + posture
+        arm[TAU + j] = total + arm[BIAS + j] + c[C_NS_POSTURE + j] + posture
 
 
 @njit(**_JIT)
-def joint_torque(arm: np.ndarray, c: np.ndarray, tau: np.ndarray) -> None:
-    """One tick of joint impedance (see adapters.control.JointImpedance) into ``tau``."""
+def joint_torque(arm: np.ndarray, c: np.ndarray) -> None:
+    """One tick of joint impedance (see adapters.control.JointImpedance) into the arm state's
+    TAU."""
     duration, elapsed = c[J_DURATION], c[J_ELAPSED]
     s = 1.0 if duration <= 0 else min(elapsed / duration, 1.0)
     c[J_ELAPSED] = elapsed + DT
     for j in range(ARM_DOF):
         v_set = c[J_VSET + j] if s < 1.0 else 0.0
         error = c[J_Q0 + j] + s * c[J_DQ + j] - arm[STATE + j]
-        tau[j] = c[J_K + j] * error + c[J_D + j] * (v_set - arm[STATE + NV + j]) + arm[BIAS + j]
+        arm[TAU + j] = (
+            c[J_K + j] * error + c[J_D + j] * (v_set - arm[STATE + NV + j]) + arm[BIAS + j]
+        )
 
 
 @njit(**_JIT)
@@ -525,11 +538,10 @@ def sense(arm: np.ndarray, s: np.ndarray) -> None:
 
 @njit(**_JIT)
 def mujoco_sense(
-    mj: np.ndarray, jacobians: np.ndarray, index: np.ndarray, arm: np.ndarray, s: np.ndarray
+    mj: np.ndarray, jacobians: np.ndarray, index: np.ndarray, arm: np.ndarray, wrist: bool
 ) -> None:
     """The arm state from MuJoCo's data after a step (``jacobians``: ``mj_jacSite`` of the TCP,
-    6 x nv), the raw wrist reading (see ``mujoco_actuate``), then ``sense`` into the sensing
-    buffer ``s``."""
+    6 x nv); with ``wrist``, the raw wrist reading (see ``mujoco_actuate``) and ``sense``."""
     qpos, qvel, bias, va = index[M_QPOS], index[M_QVEL], index[M_BIAS], index[M_VADR]
     for j in range(NV):
         arm[STATE + j] = mj[qpos + j]
@@ -549,7 +561,9 @@ def mujoco_sense(
         arm[TWIST + i] = total
         for j in range(ARM_DOF):
             arm[JAC + i * ARM_DOF + j] = jacobians[i, va + j]
-    force = index[M_FORCE]  # the wrist sensors (site frame) into world axes
+    if not wrist:
+        return
+    s, force = arm[SENSING:], index[M_FORCE]  # the wrist sensors (site frame) into world axes
     for b in range(2):
         for i in range(3):
             total = 0.0
@@ -562,16 +576,16 @@ def mujoco_sense(
 @njit(**_JIT)
 def pinocchio_sense(
     arm: np.ndarray,
-    s: np.ndarray,
     tcp_rotation: np.ndarray,
     tcp_position: np.ndarray,
     ft_rotation: np.ndarray,
     ft_position: np.ndarray,
     jacobian: np.ndarray,
     nle: np.ndarray,
+    wrist: bool,
 ) -> None:
     """The arm state from Pinocchio's results (placements, the TCP's LOCAL_WORLD_ALIGNED
-    Jacobian, 6 x NV, and the nonlinear effects), then ``sense`` into the sensing buffer."""
+    Jacobian, 6 x NV, and the nonlinear effects), then with ``wrist`` the wrist sensing."""
     for i in range(3):
         arm[POS + i] = tcp_position[i]
         arm[FT_POS + i] = ft_position[i]
@@ -587,14 +601,14 @@ def pinocchio_sense(
         arm[TWIST + i] = total
         for j in range(ARM_DOF):
             arm[JAC + i * ARM_DOF + j] = jacobian[i, j]
-    sense(arm, s)
+    if wrist:
+        sense(arm, arm[SENSING:])
 
 
 @njit(**_JIT)
 def twin_forces(
     arm: np.ndarray,
     twin: np.ndarray,
-    tau: np.ndarray,
     hand_position: np.ndarray,
     reach: np.ndarray,
     near: np.ndarray,
@@ -605,7 +619,7 @@ def twin_forces(
     for j in range(NV):
         twin[T_GENERALIZED + j] = twin[T_DAMPING + j] * arm[STATE + NV + j]
     for j in range(ARM_DOF):
-        twin[T_GENERALIZED + j] += tau[j]
+        twin[T_GENERALIZED + j] += arm[TAU + j]
     for i in range(6):
         twin[T_CONTACT + i] = 0.0
     x, y, z = hand_position[0], hand_position[1], hand_position[2]
@@ -621,7 +635,6 @@ def twin_forces(
 @njit(**_JIT)
 def twin_integrate(
     arm: np.ndarray,
-    s: np.ndarray,
     twin: np.ndarray,
     acceleration: np.ndarray,
     ft_rotation: np.ndarray,
@@ -644,13 +657,14 @@ def twin_integrate(
     arm[STATE + NV + ARM_DOF], arm[STATE + NV + ARM_DOF + 1] = left, right
     arm[STATE + ARM_DOF] += DT * left
     arm[STATE + ARM_DOF + 1] += DT * right
-    twin_wrist(s, twin, ft_rotation)
+    twin_wrist(arm, twin, ft_rotation)
 
 
 @njit(**_JIT)
-def twin_wrist(s: np.ndarray, twin: np.ndarray, ft_rotation: np.ndarray) -> None:
-    """The twin's quasi-static wrist reading into ``s``: what link7 must exert to hold the load
-    against the contacts."""
+def twin_wrist(arm: np.ndarray, twin: np.ndarray, ft_rotation: np.ndarray) -> None:
+    """The twin's quasi-static wrist reading into the arm state's sensing: what link7 must
+    exert to hold the load against the contacts."""
+    s = arm[SENSING:]
     com = twin[T_LOAD_COM : T_LOAD_COM + 3]
     lx = ft_rotation[0, 0] * com[0] + ft_rotation[0, 1] * com[1] + ft_rotation[0, 2] * com[2]
     ly = ft_rotation[1, 0] * com[0] + ft_rotation[1, 1] * com[1] + ft_rotation[1, 2] * com[2]
@@ -668,19 +682,17 @@ def twin_wrist(s: np.ndarray, twin: np.ndarray, ft_rotation: np.ndarray) -> None
 def warm_up() -> None:
     """Compile (or load from the cache) every kernel now, on scratch buffers, so that the
     first command does not pay for it inside its control loop."""
-    arm, tau = np.zeros(ARM_SIZE), np.zeros(ARM_DOF)
-    cartesian = np.zeros(CARTESIAN_SIZE)
-    cartesian_torque(arm, np.eye(ARM_DOF), cartesian, tau)
+    arm, cartesian = np.zeros(ARM_SIZE), np.zeros(CARTESIAN_SIZE)
+    cartesian_torque(arm, cartesian)
     spd_inverse(np.eye(ARM_DOF), np.zeros((ARM_DOF, ARM_DOF)))
-    joint_torque(arm, np.zeros(JOINT_SIZE), tau)
-    sense(arm, np.zeros(SENSE_SIZE))
-    mj, index, sensing = np.zeros(4 * NV), np.zeros(M_SIZE, dtype=np.int64), np.zeros(SENSE_SIZE)
-    mujoco_sense(mj, np.zeros((6, NV)), index, arm, sensing)
-    mujoco_actuate(mj, tau, 1.0, index, sensing)
-    finger_push(1.0, 0.0, 0.0, 0.0)
+    joint_torque(arm, np.zeros(JOINT_SIZE))
+    mj, index = np.zeros(4 * NV), np.zeros(M_SIZE, dtype=np.int64)
+    mujoco_sense(mj, np.zeros((6, NV)), index, arm, True)
+    mujoco_actuate(mj, arm, 1.0, index)
     rotation, position = np.asfortranarray(np.eye(3)), np.zeros(3)  # Pinocchio's are Fortran
     jacobian = np.asfortranarray(np.zeros((6, NV)))
-    pinocchio_sense(arm, sensing, rotation, position, rotation, position, jacobian, np.zeros(NV))
+    pinocchio_sense(arm, rotation, position, rotation, position, jacobian, np.zeros(NV), True)
     twin = np.zeros(TWIN_SIZE)
-    twin_forces(arm, twin, tau, position, np.zeros((1, 6)), np.zeros(1, dtype=np.bool_))
-    twin_integrate(arm, sensing, twin, tau, rotation, 0.1, 0.0, False, False)
+    twin_forces(arm, twin, position, np.zeros((1, 6)), np.zeros(1, dtype=np.bool_))
+    twin_integrate(arm, twin, np.zeros(ARM_DOF), rotation, 0.1, 0.0, False, False)
+    twin_wrist(arm, twin, rotation)

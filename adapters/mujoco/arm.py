@@ -32,21 +32,19 @@ class MujocoArm(ArmState):
         self._linear, self._angular = self._jacobians[:3], self._jacobians[3:]
         self._mass = np.zeros((model.nv, model.nv))
         self._arm_mass = self._mass[va : va + ARM_DOF, va : va + ARM_DOF]
-        self._scratch = np.zeros(k.SENSE_SIZE)
-        """The sensing buffer of ``update()``, which leaves the wrist sensing alone."""
 
     def update(self) -> None:
-        self._read(self._scratch)
+        self._read(False)
 
     def sense(self) -> None:
-        self._read(self.sensing)
+        self._read(True)
 
-    def _read(self, sensing: np.ndarray) -> None:
-        """One ``mj_jacSite`` and one native call: the arm state, then the wrist sensing into
-        ``sensing``."""
+    def _read(self, wrist: bool) -> None:
+        """One ``mj_jacSite`` and one native call: the arm state, then with ``wrist`` the wrist
+        sensing."""
         model, data = self._model, self._data
         mujoco.mj_jacSite(model, data, self._linear, self._angular, self._tcp)
-        k.mujoco_sense(self._mj, self._jacobians, self._index, self.buffer, sensing)
+        k.mujoco_sense(self._mj, self._jacobians, self._index, self.buffer, wrist)
         if self._slow_tick():
             mujoco.mj_fullM(model, data, self._mass)
             self._set_mass(self._arm_mass)

@@ -79,8 +79,7 @@ class MujocoPlant:
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
         self.arm: ArmState = MujocoArm(self.model, self.data, self._mj, self._index)
-        self._sensing = self.arm.sensing
-        self._sensing[k.S_SENSOR_ROT : k.S_SENSOR_ROT + 9] = self.data.site_xmat[ft]
+        self.arm.sensing[k.S_SENSOR_ROT : k.S_SENSOR_ROT + 9] = self.data.site_xmat[ft]
         if self._scene_step is not None:
             self._scene_step(self.model, self.data)
         mujoco.mj_step1(self.model, self.data)
@@ -95,7 +94,10 @@ class MujocoPlant:
         GRIPPER_BAND of the end of travel (see robot_model).
         """
         model, data = self.model, self.data
-        k.mujoco_actuate(self._mj, tau, grip, self._index, self._sensing)
+        arm = self.arm
+        if tau is not arm.tau:
+            arm.tau[:] = tau
+        k.mujoco_actuate(self._mj, arm.buffer, grip, self._index)
         mujoco.mj_step2(model, data)
         if self._scene_step is not None:
             self._scene_step(model, data)

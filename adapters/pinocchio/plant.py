@@ -110,7 +110,7 @@ class PinocchioPlant:
         self._fixture = scene_hooks.fixture_twin(scene)
         self._grasp = 0.0
         """Finger position [m] where the fingers stop on a grasped fixture part (0: none)."""
-        k.twin_wrist(self.arm.sensing, self._twin, self._ft_rotation)
+        k.twin_wrist(self.arm.buffer, self._twin, self._ft_rotation)
 
     @property
     def fixture(self) -> scene_hooks.FixtureTwin | None:
@@ -154,7 +154,9 @@ class PinocchioPlant:
         """One DT: contacts, arm dynamics, then the first-order fingers."""
         pin.framesForwardKinematics(self.robot, self.robot_data, self.q)
         arm, twin = self.arm, self._twin
-        near = k.twin_forces(arm.buffer, twin, tau, self._hand_position, self._reach, self._near)
+        if tau is not arm.tau:
+            arm.tau[:] = tau
+        near = k.twin_forces(arm.buffer, twin, self._hand_position, self._reach, self._near)
         left = right = False
         if near:
             boxes = [box for box, hit in zip(self._boxes, self._near, strict=True) if hit]
@@ -163,7 +165,7 @@ class PinocchioPlant:
             self._apply_fixture(self._generalized, grip)
         a = pin.aba(self._arm, self._arm_data, self._arm_q, self._arm_v, self._arm_generalized)
         k.twin_integrate(
-            arm.buffer, arm.sensing, twin, a, self._ft_rotation,
+            arm.buffer, twin, a, self._ft_rotation,
             grip / FINGER_DAMPING, self._grasp, left, right,
         )  # fmt: skip
 
