@@ -185,7 +185,8 @@ def mujoco_actuate(mj: np.ndarray, arm: np.ndarray, grip: float, index: np.ndarr
 
 @njit(**_JIT)
 def exp3(v0: float, v1: float, v2: float, out: np.ndarray) -> None:
-    """Rotation matrix of the rotation vector (Pinocchio's ``exp3``) into ``out`` (3 x 3)."""
+    """Rotation matrix of the rotation vector (Pinocchio's ``exp3``) into ``out`` (9, row-major:
+    flat arrays, since a reshape costs a numba call ~25 ns)."""
     t2 = v0 * v0 + v1 * v1 + v2 * v2 + _EPS * _EPS
     t = math.sqrt(t2)
     st, ct = math.sin(t), math.cos(t)
@@ -194,29 +195,29 @@ def exp3(v0: float, v1: float, v2: float, out: np.ndarray) -> None:
     else:
         a_vxvx, a_vx, ct = 0.5 - t2 / 24, 1.0 - t2 / 6, 1.0 - t2 / 2
     a0, a1, a2 = a_vxvx * v0, a_vxvx * v1, a_vxvx * v2
-    out[0, 0] = a0 * v0 + ct
-    out[0, 1] = a0 * v1 - a_vx * v2
-    out[0, 2] = a0 * v2 + a_vx * v1
-    out[1, 0] = a1 * v0 + a_vx * v2
-    out[1, 1] = a1 * v1 + ct
-    out[1, 2] = a1 * v2 - a_vx * v0
-    out[2, 0] = a2 * v0 - a_vx * v1
-    out[2, 1] = a2 * v1 + a_vx * v0
-    out[2, 2] = a2 * v2 + ct
+    out[0] = a0 * v0 + ct
+    out[1] = a0 * v1 - a_vx * v2
+    out[2] = a0 * v2 + a_vx * v1
+    out[3] = a1 * v0 + a_vx * v2
+    out[4] = a1 * v1 + ct
+    out[5] = a1 * v2 - a_vx * v0
+    out[6] = a2 * v0 - a_vx * v1
+    out[7] = a2 * v1 + a_vx * v0
+    out[8] = a2 * v2 + ct
 
 
 @njit(**_JIT)
 def _theta_axis(i0: int, val: float, r: np.ndarray, axis: np.ndarray) -> float:
-    """Angle and axis of a rotation near π from its column ``i0`` (Pinocchio's
-    ``compute_theta_axis``); returns the angle, ``axis`` receives the unit axis."""
+    """Angle and axis of a rotation ``r`` (9, row-major) near π from its column ``i0``
+    (Pinocchio's ``compute_theta_axis``); returns the angle, ``axis`` receives the unit axis."""
     i1, i2 = (i0 + 1) % 3, (i0 + 2) % 3
     s = math.sqrt(val + _EPS + _EPS * _EPS)
-    if r[i2, i1] < r[i1, i2]:
+    if r[3 * i2 + i1] < r[3 * i1 + i2]:
         s = -s
     axis[i0] = s / 2
-    axis[i1] = 1.0 / (2 * s) * (r[i1, i0] + r[i0, i1])
-    axis[i2] = 1.0 / (2 * s) * (r[i2, i0] + r[i0, i2])
-    w = 1.0 / (2 * s) * (r[i2, i1] - r[i1, i2])
+    axis[i1] = 1.0 / (2 * s) * (r[3 * i1 + i0] + r[3 * i0 + i1])
+    axis[i2] = 1.0 / (2 * s) * (r[3 * i2 + i0] + r[3 * i0 + i2])
+    w = 1.0 / (2 * s) * (r[3 * i2 + i1] - r[3 * i1 + i2])
     norm = math.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
     axis[0] /= norm
     axis[1] /= norm
@@ -226,26 +227,26 @@ def _theta_axis(i0: int, val: float, r: np.ndarray, axis: np.ndarray) -> float:
 
 @njit(**_JIT)
 def log3(r_in: np.ndarray, out: np.ndarray, r: np.ndarray) -> None:
-    """Rotation vector of a rotation matrix (Pinocchio's ``log3``, including its
-    renormalisation and its branches near 0 and π) into ``out`` (3); ``r`` (3 x 3) is scratch
-    space."""
-    n0 = math.sqrt(r_in[0, 0] ** 2 + r_in[1, 0] ** 2 + r_in[2, 0] ** 2)
-    n1 = math.sqrt(r_in[0, 1] ** 2 + r_in[1, 1] ** 2 + r_in[2, 1] ** 2)
+    """Rotation vector of a rotation matrix ``r_in`` (9, row-major) into ``out`` (3):
+    Pinocchio's ``log3``, including its renormalisation and its branches near 0 and π. ``r``
+    (9) is scratch space."""
+    n0 = math.sqrt(r_in[0] ** 2 + r_in[3] ** 2 + r_in[6] ** 2)
+    n1 = math.sqrt(r_in[1] ** 2 + r_in[4] ** 2 + r_in[7] ** 2)
     for i in range(3):
-        r[i, 0] = r_in[i, 0] / n0
-        r[i, 1] = r_in[i, 1] / n1
-    r[0, 2] = r[1, 0] * r[2, 1] - r[2, 0] * r[1, 1]  # col2 = col0 x col1
-    r[1, 2] = r[2, 0] * r[0, 1] - r[0, 0] * r[2, 1]
-    r[2, 2] = r[0, 0] * r[1, 1] - r[1, 0] * r[0, 1]
-    c0, c1, c2 = r[1, 1] * r[2, 2] - r[2, 1] * r[1, 2], 0.0, 0.0  # col0 = col1 x col2
-    c1 = r[2, 1] * r[0, 2] - r[0, 1] * r[2, 2]
-    c2 = r[0, 1] * r[1, 2] - r[1, 1] * r[0, 2]
-    r[0, 0], r[1, 0], r[2, 0] = c0, c1, c2
-    tr = r[0, 0] + r[1, 1] + r[2, 2]
+        r[3 * i] = r_in[3 * i] / n0
+        r[3 * i + 1] = r_in[3 * i + 1] / n1
+    r[2] = r[3] * r[7] - r[6] * r[4]  # col2 = col0 x col1
+    r[5] = r[6] * r[1] - r[0] * r[7]
+    r[8] = r[0] * r[4] - r[3] * r[1]
+    c0 = r[4] * r[8] - r[7] * r[5]  # col0 = col1 x col2
+    c1 = r[7] * r[2] - r[1] * r[8]
+    c2 = r[1] * r[5] - r[4] * r[2]
+    r[0], r[3], r[6] = c0, c1, c2
+    tr = r[0] + r[4] + r[8]
     cos_value = (tr - 1) / 2
     if cos_value < -1 + _PREC2:  # θ near π: the axis from the largest diagonal element
         axis = np.empty(3)
-        vals = (2 * r[0, 0] - tr + 1, 2 * r[1, 1] - tr + 1, 2 * r[2, 2] - tr + 1)
+        vals = (2 * r[0] - tr + 1, 2 * r[4] - tr + 1, 2 * r[8] - tr + 1)
         if vals[0] >= vals[1]:
             i0 = 0 if vals[0] >= vals[2] else 2
         else:
@@ -258,9 +259,9 @@ def log3(r_in: np.ndarray, out: np.ndarray, r: np.ndarray) -> None:
         theta = math.acos(cos_value) if tr >= -1 + _PREC2 else math.pi - acos_expansion
     else:
         theta = acos_expansion
-    a0 = 0.5 * (r[2, 1] - r[1, 2])
-    a1 = 0.5 * (r[0, 2] - r[2, 0])
-    a2 = 0.5 * (r[1, 0] - r[0, 1])
+    a0 = 0.5 * (r[7] - r[5])
+    a1 = 0.5 * (r[2] - r[6])
+    a2 = 0.5 * (r[3] - r[1])
     if theta >= _PREC2:
         t = theta / math.sin(theta)
     else:
@@ -302,14 +303,14 @@ def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
 
 
 @njit(**_JIT)
-def cartesian_refresh(mass_inv: np.ndarray, c: np.ndarray) -> None:
-    """The slow terms of Cartesian impedance from the controlled frame in ``c`` (see
-    ``cartesian_frame``) and the inverse arm mass matrix: the damping ``D = 2 ζ sqrt(K Λ_ii)``
+def cartesian_refresh(
+    mass_inv: np.ndarray, jac: np.ndarray, rot: np.ndarray, c: np.ndarray
+) -> None:
+    """The slow terms of Cartesian impedance from the controlled frame's Jacobian and rotation
+    and the inverse arm mass matrix: the damping ``D = 2 ζ sqrt(K Λ_ii)``
     with the diagonal of the operational-space inertia Λ = (J M⁻¹ Jᵀ)⁻¹ in task axes, and the
     dynamically consistent null-space projector ``N = I − Jᵀ J̄ᵀ``, ``J̄ = M⁻¹ Jᵀ Λ``, split into
     a constant posture torque and a matrix acting on the joint state."""
-    jac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
-    rot = c[C_FRAME_ROT : C_FRAME_ROT + 9].reshape(3, 3)
     mj = np.zeros((ARM_DOF, 6))  # M⁻¹ Jᵀ
     for i in range(ARM_DOF):
         for j in range(6):
@@ -358,44 +359,34 @@ def cartesian_refresh(mass_inv: np.ndarray, c: np.ndarray) -> None:
 
 @njit(**_JIT)
 def cartesian_frame(arm: np.ndarray, c: np.ndarray) -> None:
-    """Pose, Jacobian and twist of the controlled frame (``tcp * task``) into ``c``."""
-    rot = arm[ROT : ROT + 9].reshape(3, 3)
-    pos = arm[POS : POS + 3]
-    jac = arm[JAC : JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
-    frot = c[C_FRAME_ROT : C_FRAME_ROT + 9].reshape(3, 3)
-    fpos = c[C_FRAME_POS : C_FRAME_POS + 3]
-    fjac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
-    ftwist = c[C_FRAME_TWIST : C_FRAME_TWIST + 6]
-    if c[C_OFFSET] == 0.0:  # element loops: numba's slice assignment checks for overlap
-        for i in range(9):
-            c[C_FRAME_ROT + i] = arm[ROT + i]
-        for i in range(3):
-            c[C_FRAME_POS + i] = arm[POS + i]
-        for i in range(6 * ARM_DOF):
-            c[C_FRAME_JAC + i] = arm[JAC + i]
-        for i in range(6):
-            c[C_FRAME_TWIST + i] = arm[TWIST + i]
-        return
-    task_r = c[C_TASK_R : C_TASK_R + 9].reshape(3, 3)
-    task_p = c[C_TASK_P : C_TASK_P + 3]
+    """Pose, Jacobian and twist of the controlled frame ``tcp * task`` into ``c``, when the task
+    frame is not the TCP (else the controller reads the arm state's). Flat row-major indexing
+    throughout: a reshape costs a numba call."""
     for i in range(3):
         for j in range(3):
-            frot[i, j] = (
-                rot[i, 0] * task_r[0, j] + rot[i, 1] * task_r[1, j] + rot[i, 2] * task_r[2, j]
-            )
-        fpos[i] = rot[i, 0] * task_p[0] + rot[i, 1] * task_p[1] + rot[i, 2] * task_p[2] + pos[i]
-    dx, dy, dz = fpos[0] - pos[0], fpos[1] - pos[1], fpos[2] - pos[2]
+            total = 0.0
+            for m in range(3):
+                total += arm[ROT + 3 * i + m] * c[C_TASK_R + 3 * m + j]
+            c[C_FRAME_ROT + 3 * i + j] = total
+        total = 0.0
+        for m in range(3):
+            total += arm[ROT + 3 * i + m] * c[C_TASK_P + m]
+        c[C_FRAME_POS + i] = total + arm[POS + i]
+    dx = c[C_FRAME_POS] - arm[POS]
+    dy = c[C_FRAME_POS + 1] - arm[POS + 1]
+    dz = c[C_FRAME_POS + 2] - arm[POS + 2]
+    jac, fjac = JAC, C_FRAME_JAC
     for j in range(ARM_DOF):  # linear rows -= skew(d) @ angular rows
-        wx, wy, wz = jac[3, j], jac[4, j], jac[5, j]
-        fjac[0, j] = jac[0, j] - (dy * wz - dz * wy)
-        fjac[1, j] = jac[1, j] - (dz * wx - dx * wz)
-        fjac[2, j] = jac[2, j] - (dx * wy - dy * wx)
-        fjac[3, j], fjac[4, j], fjac[5, j] = wx, wy, wz
+        wx, wy, wz = arm[jac + 21 + j], arm[jac + 28 + j], arm[jac + 35 + j]
+        c[fjac + j] = arm[jac + j] - (dy * wz - dz * wy)
+        c[fjac + 7 + j] = arm[jac + 7 + j] - (dz * wx - dx * wz)
+        c[fjac + 14 + j] = arm[jac + 14 + j] - (dx * wy - dy * wx)
+        c[fjac + 21 + j], c[fjac + 28 + j], c[fjac + 35 + j] = wx, wy, wz
     for i in range(6):
         total = 0.0
         for j in range(ARM_DOF):
-            total += fjac[i, j] * arm[STATE + NV + j]
-        ftwist[i] = total
+            total += c[fjac + ARM_DOF * i + j] * arm[STATE + NV + j]
+        c[C_FRAME_TWIST + i] = total
 
 
 @njit(**_JIT)
@@ -408,67 +399,65 @@ def cartesian_torque(arm: np.ndarray, c: np.ndarray) -> None:
     c[C_ELAPSED] = elapsed + DT
     moving = s < 1.0
     c[C_MOVING] = 1.0 if moving else 0.0
-    cartesian_frame(arm, c)
+    if c[C_OFFSET] == 0.0:  # the controlled frame: the TCP, or computed into c
+        f, rot, pos, jac, twist = arm, ROT, POS, JAC, TWIST
+    else:
+        cartesian_frame(arm, c)
+        f, rot, pos = c, C_FRAME_ROT, C_FRAME_POS
+        jac, twist = C_FRAME_JAC, C_FRAME_TWIST
     if c[C_TICKS] % SLOW_EVERY == 0:
-        cartesian_refresh(arm[MASS_INV : MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, ARM_DOF), c)
+        mass_inv = arm[MASS_INV : MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, ARM_DOF)
+        jacobian = f[jac : jac + 6 * ARM_DOF].reshape(6, ARM_DOF)
+        cartesian_refresh(mass_inv, jacobian, f[rot : rot + 9].reshape(3, 3), c)
     c[C_TICKS] += 1
-    rot = c[C_FRAME_ROT : C_FRAME_ROT + 9].reshape(3, 3)
-    pos = c[C_FRAME_POS : C_FRAME_POS + 3]
-    jac = c[C_FRAME_JAC : C_FRAME_JAC + 6 * ARM_DOF].reshape(6, ARM_DOF)
-    twist = c[C_FRAME_TWIST : C_FRAME_TWIST + 6]
-    errors = c[C_ERRORS : C_ERRORS + 9].reshape(3, 3)
-    scratch = c[C_SCRATCH : C_SCRATCH + 48]
-    r_set, turn = scratch[0:9].reshape(3, 3), scratch[9:18].reshape(3, 3)
-    error, normed = scratch[18:27].reshape(3, 3), scratch[27:36].reshape(3, 3)
-    wrench, world = scratch[36:42], scratch[42:48]
+    e, sc = C_ERRORS, C_SCRATCH  # errors: rows position, linear and angular velocity
+    r_set, turn, error, normed, wrench, world = sc, sc + 9, sc + 18, sc + 27, sc + 36, sc + 42
     if moving:
         for i in range(3):
-            errors[0, i] = c[C_P0 + i] + s * c[C_DP + i] - pos[i]
+            c[e + i] = c[C_P0 + i] + s * c[C_DP + i] - f[pos + i]
         for i in range(6):
-            errors[1 + i // 3, i % 3] = c[C_TWSET + i] - twist[i]
-        exp3(s * c[C_DR], s * c[C_DR + 1], s * c[C_DR + 2], turn)
-        r0 = c[C_R0 : C_R0 + 9].reshape(3, 3)
+            c[e + 3 + i] = c[C_TWSET + i] - f[twist + i]
+        exp3(s * c[C_DR], s * c[C_DR + 1], s * c[C_DR + 2], c[turn : turn + 9])
         for i in range(3):
             for j in range(3):
-                r_set[i, j] = r0[i, 0] * turn[0, j] + r0[i, 1] * turn[1, j] + r0[i, 2] * turn[2, j]
+                total = 0.0
+                for m in range(3):
+                    total += c[C_R0 + 3 * i + m] * c[turn + 3 * m + j]
+                c[r_set + 3 * i + j] = total
     else:
         for i in range(3):
-            errors[0, i] = c[C_PGOAL + i] - pos[i]
+            c[e + i] = c[C_PGOAL + i] - f[pos + i]
         for i in range(6):
-            errors[1 + i // 3, i % 3] = -twist[i]
+            c[e + 3 + i] = -f[twist + i]
         for i in range(9):
-            scratch[i] = c[C_RGOAL + i]  # r_set
-    local = c[C_LOCAL : C_LOCAL + 9].reshape(3, 3)
-    for i in range(3):  # row i: Rᵀ errors[i]
+            c[r_set + i] = c[C_RGOAL + i]
+    for i in range(3):
         for j in range(3):
-            local[i, j] = (
-                errors[i, 0] * rot[0, j] + errors[i, 1] * rot[1, j] + errors[i, 2] * rot[2, j]
-            )
-    for i in range(3):  # Rᵀ R_set
-        for j in range(3):
-            error[i, j] = (
-                rot[0, i] * r_set[0, j] + rot[1, i] * r_set[1, j] + rot[2, i] * r_set[2, j]
-            )
-    e_rot = c[C_EROT : C_EROT + 3]
-    log3(error, e_rot, normed)
+            total = 0.0  # row i of the errors in task axes: Rᵀ errors[i]
+            for m in range(3):
+                total += c[e + 3 * i + m] * f[rot + 3 * m + j]
+            c[C_LOCAL + 3 * i + j] = total
+            total = 0.0  # Rᵀ R_set
+            for m in range(3):
+                total += f[rot + 3 * m + i] * c[r_set + 3 * m + j]
+            c[error + 3 * i + j] = total
+    log3(c[error : error + 9], c[C_EROT : C_EROT + 3], c[normed : normed + 9])
     for i in range(3):  # K e + D ė in task axes, force then torque
-        wrench[i] = c[C_K + i] * local[0, i] + c[C_D + i] * local[1, i]
-        wrench[3 + i] = c[C_K + 3 + i] * e_rot[i] + c[C_D + 3 + i] * local[2, i]
+        c[wrench + i] = c[C_K + i] * c[C_LOCAL + i] + c[C_D + i] * c[C_LOCAL + 3 + i]
+        c[wrench + 3 + i] = c[C_K + 3 + i] * c[C_EROT + i] + c[C_D + 3 + i] * c[C_LOCAL + 6 + i]
     for b in range(2):  # back to world axes, per 3-block
         for i in range(3):
-            world[3 * b + i] = (
-                wrench[3 * b] * rot[i, 0]
-                + wrench[3 * b + 1] * rot[i, 1]
-                + wrench[3 * b + 2] * rot[i, 2]
-            )
-    ns = c[C_NS_STATE : C_NS_STATE + ARM_DOF * 2 * NV].reshape(ARM_DOF, 2 * NV)
+            total = 0.0
+            for m in range(3):
+                total += c[wrench + 3 * b + m] * f[rot + 3 * i + m]
+            c[world + 3 * b + i] = total
     for j in range(ARM_DOF):
         total = 0.0
         for i in range(6):
-            total += jac[i, j] * world[i]
+            total += f[jac + ARM_DOF * i + j] * c[world + i]
         posture = 0.0
         for m in range(2 * NV):
-            posture += ns[j, m] * arm[STATE + m]
+            posture += c[C_NS_STATE + 2 * NV * j + m] * arm[STATE + m]
         arm[TAU + j] = total + arm[BIAS + j] + c[C_NS_POSTURE + j] + posture
 
 
