@@ -17,9 +17,6 @@ import pinocchio as pin
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters.kernels import SLOW_EVERY
 from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
-from lightrocks.adapters.vec import symmetrize_upper
-
-_LOWER = np.tril_indices(ARM_DOF, -1)
 
 
 class ArmState(ABC):
@@ -29,9 +26,9 @@ class ArmState(ABC):
     native tick functions read; the attributes are views of it. ``jacobian`` is the TCP
     Jacobian of the arm joints, LOCAL_WORLD_ALIGNED: its rows are the linear velocity of the
     TCP point and the angular velocity, in world axes. ``bias`` holds the Coriolis,
-    centrifugal and gravity torques of the arm joints. ``mass_inv`` is refreshed in place every
-    SLOW_EVERY ticks; ``mass_diag`` is replaced then (not modified), so that controllers can
-    cache what they derive from it on identity. ``tau`` receives the controller's torques.
+    centrifugal and gravity torques of the arm joints. ``mass_inv`` and ``mass_diag`` (of the
+    arm block of the mass matrix) are refreshed in place every SLOW_EVERY ticks. ``tau``
+    receives the controller's torques.
     ``sensing`` is the wrist sensing's block (adapters.sensing), kept in the same buffer so that
     one native call updates both.
     """
@@ -56,7 +53,8 @@ class ArmState(ABC):
         self.mass_inv = buffer[k.MASS_INV : k.MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, -1)
         self.mass_inv[:] = np.eye(ARM_DOF)
         self.tau = buffer[k.TAU : k.TAU + ARM_DOF]
-        self.mass_diag = np.ones(ARM_DOF)
+        self.mass_diag = buffer[k.MASS_DIAG : k.MASS_DIAG + ARM_DOF]
+        self.mass_diag[:] = 1.0
         self.sensing = buffer[k.SENSING :]
         self.raw = self.sensing[k.S_RAW : k.S_RAW + 6]
         """The raw wrist reading, which the plant writes after each step."""
@@ -87,11 +85,6 @@ class ArmState(ABC):
         self._tick += 1
         return self._tick % SLOW_EVERY == 1
 
-    def _set_mass(self, arm_mass: np.ndarray) -> None:
-        """Take the (symmetric) mass matrix of the arm joints."""
-        k.spd_inverse(arm_mass, self.mass_inv)
-        self.mass_diag = np.diag(arm_mass).copy()
-
 
 class PinocchioArm(ArmState):
     """Computes the arm state with Pinocchio: one ``computeJointJacobians`` (which includes
@@ -115,7 +108,7 @@ class PinocchioArm(ArmState):
         tcp, ft = data.oMf[self._tcp_id], data.oMf[self._ft_id]
         self._results = (tcp.rotation, tcp.translation, ft.rotation, ft.translation)
         """Views into ``data`` that every update rewrites."""
-        self._nle = data.nle
+        self._nle, self._mass = data.nle, data.M
 
     def update(self) -> None:
         self._read(False)
@@ -132,7 +125,8 @@ class PinocchioArm(ArmState):
         pin.updateFramePlacement(model, data, self._ft_id)
         jacobian = pin.getFrameJacobian(model, data, self._tcp_id, pin.LOCAL_WORLD_ALIGNED)
         pin.nonLinearEffects(model, data, q, v)
-        k.pinocchio_sense(self.buffer, *self._results, jacobian, self._nle, wrist)
-        if self._slow_tick():
-            mass = pin.crba(model, data, q)[:ARM_DOF, :ARM_DOF]
-            self._set_mass(symmetrize_upper(mass.copy(), _LOWER))
+        slow = self._slow_tick()
+        if slow:
+            pin.crba(model, data, q)  # the upper triangle of data.M
+        results, nle, mass = self._results, self._nle, self._mass
+        k.pinocchio_sense(self.buffer, *results, jacobian, nle, mass, wrist, slow)

@@ -109,8 +109,8 @@ class JointImpedance:
     """``τ = K (q_set − q) − D q̇ + bias`` with ``D = 2 ζ sqrt(K M_ii)``.
 
     The set point moves linearly from the start configuration so that the fastest joint runs
-    at JOINT_SPEED; damping acts on the error velocity. D is recomputed only when the arm
-    state refreshes its mass matrix. The per-tick work is one native call
+    at JOINT_SPEED; damping acts on the error velocity. D follows the arm state's mass matrix,
+    refreshed every SLOW_EVERY ticks. The per-tick work is one native call
     (adapters.kernels.joint_torque).
     """
 
@@ -125,13 +125,12 @@ class JointImpedance:
         dq = self.goal - q0
         self.duration = float(np.max(np.abs(dq))) / JOINT_SPEED
         b[k.J_K : k.J_K + ARM_DOF] = self.stiffness
+        b[k.J_RATIO : k.J_RATIO + ARM_DOF] = self.ratio
         b[k.J_Q0 : k.J_Q0 + ARM_DOF] = q0
         b[k.J_DQ : k.J_DQ + ARM_DOF] = dq
         if self.duration > 0:
             b[k.J_VSET : k.J_VSET + ARM_DOF] = dq / self.duration
         b[k.J_DURATION] = self.duration
-        self._mass_diag: np.ndarray | None = None
-        self._damping = b[k.J_D : k.J_D + ARM_DOF]
 
     @property
     def elapsed(self) -> float:
@@ -140,9 +139,6 @@ class JointImpedance:
 
     def torque(self, arm: ArmState) -> np.ndarray:
         """Joint torques of the arm for this tick (the arm state's ``tau``)."""
-        if arm.mass_diag is not self._mass_diag:
-            self._mass_diag = arm.mass_diag
-            self._damping[:] = 2.0 * self.ratio * np.sqrt(self.stiffness * arm.mass_diag)
         k.joint_torque(arm.buffer, self._buffer)
         return arm.tau
 

@@ -21,7 +21,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.extending import intrinsic
 
 from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL, GRIPPER_BAND, NV
 
@@ -49,7 +51,9 @@ JAC = BIAS + ARM_DOF
 """TCP Jacobian of the arm joints, 6 x ARM_DOF, row-major. Rotations are row-major too."""
 MASS_INV = JAC + 6 * ARM_DOF
 """Inverse of the arm block of the mass matrix, refreshed every SLOW_EVERY ticks."""
-TAU = MASS_INV + ARM_DOF * ARM_DOF
+MASS_DIAG = MASS_INV + ARM_DOF * ARM_DOF
+"""Diagonal of the arm block of the mass matrix, refreshed with MASS_INV."""
+TAU = MASS_DIAG + ARM_DOF
 """The controller's arm torques for the next step."""
 SENSING = TAU + ARM_DOF
 """Start of the sensing block (offsets S_* below, relative to it)."""
@@ -105,8 +109,9 @@ LAMBDA_REGULARISATION = 1e-6
 
 # -- the joint impedance buffer (adapters.control.JointImpedance) -------------------------------
 J_K = 0
-J_D = J_K + ARM_DOF
-J_Q0 = J_D + ARM_DOF
+J_RATIO = J_K + ARM_DOF
+"""Damping ratios."""
+J_Q0 = J_RATIO + ARM_DOF
 J_DQ = J_Q0 + ARM_DOF
 J_VSET = J_DQ + ARM_DOF
 J_DURATION = J_VSET + ARM_DOF
@@ -146,14 +151,14 @@ T_GENERALIZED = T_CONTACT + 6
 TWIN_SIZE = T_GENERALIZED + NV
 
 # -- offsets into MuJoCo's data (adapters.mujoco.data_view) for the mujoco_* functions -----------
-M_QPOS, M_QVEL, M_TCP_XPOS, M_TCP_XMAT, M_FT_XPOS, M_FT_XMAT, M_BIAS, M_CTRL, M_FORCE, M_VADR = (
-    range(10)
-)
+M_QPOS, M_QVEL, M_TCP_XPOS, M_TCP_XMAT, M_FT_XPOS, M_FT_XMAT, M_BIAS, M_CTRL, M_FORCE = range(9)
+M_VADR, M_MODEL, M_DATA, M_TCP, M_JAC_SITE, M_FULL_M, M_NV = range(9, 16)
 """``index`` array: offsets in the flat view of ``data`` of the robot's first qpos and qvel,
 the TCP and ft site positions and rotations, the arm's first bias force, the robot's first
 actuator control and the ft_force sensor (ft_torque follows); then the robot's first dof
-(a column of ``mj_jacSite``'s Jacobians)."""
-M_SIZE = M_VADR + 1
+(a column of ``mj_jacSite``'s Jacobians), the addresses of the ``mjModel`` and ``mjData``, the
+TCP site id, the addresses of MuJoCo's ``mj_jacSite`` and ``mj_fullM``, and ``nv``."""
+M_SIZE = M_NV + 1
 
 
 @njit(**_JIT)
@@ -300,6 +305,44 @@ def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
             for m in range(j, n):
                 total += inv[m, i] * inv[m, j]
             out[i, j] = out[j, i] = total
+
+
+@njit(**_JIT)
+def take_mass(arm: np.ndarray, mass: np.ndarray, first: int, upper: bool) -> None:
+    """The arm block (at dof ``first``) of a mass matrix: its inverse and diagonal into the arm
+    state; with ``upper``, only the upper triangle of ``mass`` is filled (Pinocchio's crba)."""
+    block = np.empty((ARM_DOF, ARM_DOF))
+    for i in range(ARM_DOF):
+        for j in range(ARM_DOF):
+            low, high = (j, i) if upper and i > j else (i, j)
+            block[i, j] = mass[first + low, first + high]
+        arm[MASS_DIAG + i] = block[i, i]
+    spd_inverse(block, arm[MASS_INV : MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, ARM_DOF))
+
+
+@intrinsic
+def _c_call(typingctx, function, arguments):
+    """Call the C function at address ``function`` with a tuple of integer ``arguments``, all
+    passed as pointers but the last, passed as a C int if there are five (MuJoCo's
+    ``mj_jacSite(m, d, jacp, jacr, site)`` and ``mj_fullM(m, d, dst)``)."""
+    count = len(arguments)
+    signature = types.void(function, arguments)
+
+    def codegen(context, builder, sig, args):
+        pointer = ir.IntType(8).as_pointer()
+        values = [builder.extract_value(args[1], i) for i in range(count)]
+        kinds = [pointer] * count
+        if count == 5:
+            kinds[4] = ir.IntType(32)
+        converted = [
+            builder.trunc(v, kind) if kind is not pointer else builder.inttoptr(v, pointer)
+            for v, kind in zip(values, kinds, strict=True)
+        ]
+        target = builder.inttoptr(args[0], ir.FunctionType(ir.VoidType(), kinds).as_pointer())
+        builder.call(target, converted)
+        return context.get_dummy_value()
+
+    return signature, codegen
 
 
 @njit(**_JIT)
@@ -464,38 +507,25 @@ def cartesian_torque(arm: np.ndarray, c: np.ndarray) -> None:
 @njit(**_JIT)
 def joint_torque(arm: np.ndarray, c: np.ndarray) -> None:
     """One tick of joint impedance (see adapters.control.JointImpedance) into the arm state's
-    TAU."""
+    TAU, with the damping ``2 ζ sqrt(K M_ii)`` of the current mass matrix."""
     duration, elapsed = c[J_DURATION], c[J_ELAPSED]
     s = 1.0 if duration <= 0 else min(elapsed / duration, 1.0)
     c[J_ELAPSED] = elapsed + DT
     for j in range(ARM_DOF):
         v_set = c[J_VSET + j] if s < 1.0 else 0.0
         error = c[J_Q0 + j] + s * c[J_DQ + j] - arm[STATE + j]
-        arm[TAU + j] = (
-            c[J_K + j] * error + c[J_D + j] * (v_set - arm[STATE + NV + j]) + arm[BIAS + j]
-        )
+        damping = 2.0 * c[J_RATIO + j] * math.sqrt(c[J_K + j] * arm[MASS_DIAG + j])
+        arm[TAU + j] = c[J_K + j] * error + damping * (v_set - arm[STATE + NV + j]) + arm[BIAS + j]
 
 
 @njit(**_JIT)
 def sense(arm: np.ndarray, s: np.ndarray) -> None:
     """Wrist sensing (adapters.sensing) of the raw reading in ``s``, then the peak force and
     the TCP's turn about its own z since command start (unwrapped)."""
-    ft_rot = arm[FT_ROT : FT_ROT + 9].reshape(3, 3)
-    lx = (
-        ft_rot[0, 0] * s[S_LOAD_COM]
-        + ft_rot[0, 1] * s[S_LOAD_COM + 1]
-        + ft_rot[0, 2] * s[S_LOAD_COM + 2]
-    )
-    ly = (
-        ft_rot[1, 0] * s[S_LOAD_COM]
-        + ft_rot[1, 1] * s[S_LOAD_COM + 1]
-        + ft_rot[1, 2] * s[S_LOAD_COM + 2]
-    )
-    lz = (
-        ft_rot[2, 0] * s[S_LOAD_COM]
-        + ft_rot[2, 1] * s[S_LOAD_COM + 1]
-        + ft_rot[2, 2] * s[S_LOAD_COM + 2]
-    )
+    com, r = S_LOAD_COM, FT_ROT  # the load's lever: ft rotation @ centre of mass
+    lx = arm[r] * s[com] + arm[r + 1] * s[com + 1] + arm[r + 2] * s[com + 2]
+    ly = arm[r + 3] * s[com] + arm[r + 4] * s[com + 1] + arm[r + 5] * s[com + 2]
+    lz = arm[r + 6] * s[com] + arm[r + 7] * s[com + 1] + arm[r + 8] * s[com + 2]
     wx, wy, wz = s[S_WEIGHT], s[S_WEIGHT + 1], s[S_WEIGHT + 2]
     fx = -s[S_RAW] - s[S_OFFSET] - wx
     fy = -s[S_RAW + 1] - s[S_OFFSET + 1] - wy
@@ -527,11 +557,28 @@ def sense(arm: np.ndarray, s: np.ndarray) -> None:
 
 @njit(**_JIT)
 def mujoco_sense(
-    mj: np.ndarray, jacobians: np.ndarray, index: np.ndarray, arm: np.ndarray, wrist: bool
+    mj: np.ndarray,
+    scratch: np.ndarray,
+    index: np.ndarray,
+    arm: np.ndarray,
+    wrist: bool,
+    slow: bool,
 ) -> None:
-    """The arm state from MuJoCo's data after a step (``jacobians``: ``mj_jacSite`` of the TCP,
-    6 x nv); with ``wrist``, the raw wrist reading (see ``mujoco_actuate``) and ``sense``."""
+    """The arm state from MuJoCo's data after a step, with MuJoCo's ``mj_jacSite`` of the TCP
+    (into ``scratch``, 6 x nv) and, when ``slow``, ``mj_fullM`` (into ``scratch`` after the
+    Jacobians, nv x nv) for the mass terms; with ``wrist``, the raw wrist reading (see
+    ``mujoco_actuate``) and ``sense``. MuJoCo's functions are called at their addresses in
+    ``index``: one native call for all, where each call through the Python bindings costs
+    ~0.5 µs. Neither can fail for valid ids (no allocation, no MuJoCo error)."""
     qpos, qvel, bias, va = index[M_QPOS], index[M_QVEL], index[M_BIAS], index[M_VADR]
+    model, data = index[M_MODEL], index[M_DATA]
+    nv = index[M_NV]
+    jacobians = scratch[: 6 * nv].reshape(6, nv)
+    at = scratch.ctypes.data
+    _c_call(index[M_JAC_SITE], (model, data, at, at + 8 * 3 * nv, index[M_TCP]))
+    if slow:
+        _c_call(index[M_FULL_M], (model, data, at + 8 * 6 * nv))
+        take_mass(arm, scratch[6 * nv :].reshape(nv, nv), va, False)
     for j in range(NV):
         arm[STATE + j] = mj[qpos + j]
         arm[STATE + NV + j] = mj[qvel + j]
@@ -571,10 +618,15 @@ def pinocchio_sense(
     ft_position: np.ndarray,
     jacobian: np.ndarray,
     nle: np.ndarray,
+    mass: np.ndarray,
     wrist: bool,
+    slow: bool,
 ) -> None:
     """The arm state from Pinocchio's results (placements, the TCP's LOCAL_WORLD_ALIGNED
-    Jacobian, 6 x NV, and the nonlinear effects), then with ``wrist`` the wrist sensing."""
+    Jacobian, 6 x NV, the nonlinear effects, and when ``slow`` the mass matrix of ``crba``,
+    upper triangle), then with ``wrist`` the wrist sensing."""
+    if slow:
+        take_mass(arm, mass, 0, True)
     for i in range(3):
         arm[POS + i] = tcp_position[i]
         arm[FT_POS + i] = ft_position[i]
@@ -673,15 +725,20 @@ def warm_up() -> None:
     first command does not pay for it inside its control loop."""
     arm, cartesian = np.zeros(ARM_SIZE), np.zeros(CARTESIAN_SIZE)
     cartesian_torque(arm, cartesian)
-    spd_inverse(np.eye(ARM_DOF), np.zeros((ARM_DOF, ARM_DOF)))
     joint_torque(arm, np.zeros(JOINT_SIZE))
     mj, index = np.zeros(4 * NV), np.zeros(M_SIZE, dtype=np.int64)
-    mujoco_sense(mj, np.zeros((6, NV)), index, arm, True)
     mujoco_actuate(mj, arm, 1.0, index)
     rotation, position = np.asfortranarray(np.eye(3)), np.zeros(3)  # Pinocchio's are Fortran
-    jacobian = np.asfortranarray(np.zeros((6, NV)))
-    pinocchio_sense(arm, rotation, position, rotation, position, jacobian, np.zeros(NV), True)
+    jacobian, mass = np.asfortranarray(np.zeros((6, NV))), np.asfortranarray(np.eye(NV))
+    joints = np.zeros(NV)
+    pinocchio_sense(arm, rotation, position, rotation, position, jacobian, joints, mass, True, True)
     twin = np.zeros(TWIN_SIZE)
     twin_forces(arm, twin, position, np.zeros((1, 6)), np.zeros(1, dtype=np.bool_))
     twin_integrate(arm, twin, np.zeros(ARM_DOF), rotation, 0.1, 0.0, False, False)
     twin_wrist(arm, twin, rotation)
+
+
+def warm_up_mujoco(mj: np.ndarray, scratch: np.ndarray, index: np.ndarray) -> None:
+    """Compile (or load) ``mujoco_sense``, which calls MuJoCo: on a plant's real arguments,
+    whose arm state it leaves alone (a scratch arm buffer)."""
+    mujoco_sense(mj, scratch, index, np.zeros(ARM_SIZE), True, True)

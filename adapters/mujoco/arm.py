@@ -2,9 +2,10 @@
 
 The plant runs each step in two halves (``mj_step2``, then ``mj_step1`` of the next step), so
 after a tick MuJoCo has already computed the kinematics, the mass matrix and the bias forces
-of the state it just reached. Reading them costs a Jacobian (``mj_jacSite``) and one native
-call (adapters.kernels.mujoco_sense) that copies them into the arm state and does the wrist
-sensing; computing them again with Pinocchio cost a dozen library calls per tick.
+of the state it just reached. Reading them is one native call (adapters.kernels.mujoco_sense):
+it calls MuJoCo's ``mj_jacSite`` (and ``mj_fullM`` every SLOW_EVERY ticks) at their addresses,
+copies the results into the arm state and does the wrist sensing; computing them again with
+Pinocchio cost a dozen library calls per tick.
 """
 
 from __future__ import annotations
@@ -14,7 +15,6 @@ import numpy as np
 
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters.arm import ArmState
-from lightrocks.adapters.robot_model import ARM_DOF, TCP_SITE
 
 
 class MujocoArm(ArmState):
@@ -26,12 +26,9 @@ class MujocoArm(ArmState):
     ) -> None:
         super().__init__()
         self._model, self._data, self._mj, self._index = model, data, mj, index
-        self._tcp = model.site(TCP_SITE).id
-        va = int(index[k.M_VADR])
-        self._jacobians = np.zeros((6, model.nv))
-        self._linear, self._angular = self._jacobians[:3], self._jacobians[3:]
-        self._mass = np.zeros((model.nv, model.nv))
-        self._arm_mass = self._mass[va : va + ARM_DOF, va : va + ARM_DOF]
+        self._scratch = np.zeros(6 * model.nv + model.nv * model.nv)
+        """Room for MuJoCo's TCP Jacobians and full mass matrix."""
+        k.warm_up_mujoco(mj, self._scratch, index)
 
     def update(self) -> None:
         self._read(False)
@@ -40,11 +37,7 @@ class MujocoArm(ArmState):
         self._read(True)
 
     def _read(self, wrist: bool) -> None:
-        """One ``mj_jacSite`` and one native call: the arm state, then with ``wrist`` the wrist
-        sensing."""
-        model, data = self._model, self._data
-        mujoco.mj_jacSite(model, data, self._linear, self._angular, self._tcp)
-        k.mujoco_sense(self._mj, self._jacobians, self._index, self.buffer, wrist)
-        if self._slow_tick():
-            mujoco.mj_fullM(model, data, self._mass)
-            self._set_mass(self._arm_mass)
+        """One native call: the arm state, then with ``wrist`` the wrist sensing."""
+        self._tick += 1
+        slow = self._tick % k.SLOW_EVERY == 1
+        k.mujoco_sense(self._mj, self._scratch, self._index, self.buffer, wrist, slow)

@@ -1,4 +1,5 @@
-"""MuJoCo's data as one flat float64 array, so that a native function takes it as one argument.
+"""MuJoCo's data as one flat float64 array, so that a native function takes it as one argument;
+the addresses of MuJoCo's functions, so that native code calls them without the bindings.
 
 Each array argument of a numba function costs ~0.15 µs to pass, and the tick reads seven of
 MuJoCo's arrays. MuJoCo allocates every array of ``mjData`` in one buffer (mjdata.h:
@@ -10,6 +11,7 @@ with their offsets, replaces them. The view does not own the memory: its owner k
 from __future__ import annotations
 
 import ctypes
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -29,3 +31,14 @@ def data_view(data: mujoco.MjData, names: tuple[str, ...]) -> tuple[np.ndarray, 
         raise ValueError("mjData arrays are not aligned to float64")
     view = np.ctypeslib.as_array((ctypes.c_double * ((end - base) // 8)).from_address(base))
     return view, {name: (start - base) // 8 for name, start in starts.items()}
+
+
+def function_address(name: str) -> int:
+    """Address of a function of the MuJoCo library that the bindings load (the same file, so
+    the same loaded library), for native code to call."""
+    folder = Path(mujoco.__file__).parent
+    for pattern in ("libmujoco.so*", "libmujoco*.dylib", "mujoco.dll"):
+        for path in sorted(folder.glob(pattern)):
+            library = ctypes.CDLL(str(path))
+            return ctypes.cast(getattr(library, name), ctypes.c_void_p).value
+    raise RuntimeError(f"no MuJoCo library next to {mujoco.__file__}")

@@ -17,7 +17,7 @@ from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.mujoco.arm import MujocoArm
-from lightrocks.adapters.mujoco.data_view import data_view
+from lightrocks.adapters.mujoco.data_view import data_view, function_address
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -75,6 +75,10 @@ class MujocoPlant:
         )
         index[k.M_BIAS], index[k.M_CTRL] = at["qfrc_bias"] + va, at["ctrl"] + self._ctrl
         index[k.M_FORCE], index[k.M_VADR] = at["sensordata"] + self._force, va
+        index[k.M_MODEL], index[k.M_DATA] = self.model._address, self.data._address
+        index[k.M_TCP], index[k.M_NV] = tcp, self.model.nv
+        index[k.M_JAC_SITE] = function_address("mj_jacSite")
+        index[k.M_FULL_M] = function_address("mj_fullM")
         self._index = index
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
