@@ -4,16 +4,21 @@ In Python every NumPy or Pinocchio call costs a fixed ~0.5 µs whatever the size
 arrays, and the controller, the arm state and the wrist sensing needed about 40 of them per
 tick, four times the cost of the physics step itself. Here each phase is one compiled
 function over preallocated flat buffers: the controller (``cartesian_torque``,
-``joint_torque``) and the sensing after a step (``sense``, or ``mujoco_sense``, which also
-reads MuJoCo's data). Each buffer has a fixed layout (the offsets below); the Python objects
+``joint_torque``), the motor commands (``mujoco_actuate``) and the state and sensing after a
+step (``mujoco_sense``, ``pinocchio_sense``; the twin's ``twin_forces``/``twin_integrate``
+around Pinocchio's ABA). Each buffer has a fixed layout (the offsets below); the Python objects
 that own a buffer expose named views of it, so everything outside the tick reads arrays as
 before.
 
-The functions are compiled on first use and cached next to this file (numba's ``cache=True``:
-the cache is keyed by this file's contents and the CPU, and written atomically, so several
-processes may share it). ``exp3`` and ``log3`` follow Pinocchio's algorithms (same Taylor
-branches and thresholds), matrix products sum in index order: results equal NumPy's and
-Pinocchio's to rounding, not bit for bit (their BLAS/Eigen kernels sum in other orders).
+The functions are compiled once and cached (numba's ``cache=True``) in ``__pycache__`` next to
+this file, or in the user's cache folder where that is not writable (``NUMBA_CACHE_DIR``
+overrides both). The cache is keyed on this file (its time stamp and size) and the CPU, and
+written atomically, so processes may share it; everything the compiled code depends on is in
+this file. A cold start compiles for ~7 s; later starts load in ~0.2 s (``warm_up``).
+
+``exp3`` and ``log3`` follow Pinocchio's algorithms (same Taylor branches and thresholds),
+matrix products sum in index order: results equal NumPy's and Pinocchio's to rounding, not bit
+for bit (their BLAS/Eigen kernels sum in other orders).
 """
 
 from __future__ import annotations
@@ -25,7 +30,20 @@ from llvmlite import ir
 from numba import njit, types
 from numba.extending import intrinsic
 
-from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL, GRIPPER_BAND, NV
+from lightrocks.adapters import robot_model
+
+ARM_DOF, NV = 7, 9
+FINGER_TRAVEL, GRIPPER_BAND = 0.04, 0.002
+"""The robot facts the compiled code uses, repeated here because numba's cache is keyed on this
+file alone: a change in robot_model that is not made here too fails at import instead of
+running stale cached code."""
+if (ARM_DOF, NV, FINGER_TRAVEL, GRIPPER_BAND) != (
+    robot_model.ARM_DOF,
+    robot_model.NV,
+    robot_model.FINGER_TRAVEL,
+    robot_model.GRIPPER_BAND,
+):
+    raise ImportError("adapters/kernels.py must repeat the constants of adapters/robot_model.py")
 
 DT = 0.001
 """Control period [s]."""
