@@ -522,6 +522,7 @@ class SimulatedCell:
         self.wrench_value = None
 
     def _tick(self) -> None:
+        """Control, step, sense (``_sense`` inlined: a Python call costs ~0.1 µs per tick)."""
         self.plant.step(self.controller.torque(self.arm), self.grip)
         self.time += DT
         self.arm.sense()
