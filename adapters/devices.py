@@ -16,8 +16,10 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 
+from lightrocks.adapters import kernels
 from lightrocks.adapters.arm import ArmState
-from lightrocks.adapters.control import DT, CartesianImpedance, JointImpedance
+from lightrocks.adapters.control import CartesianImpedance, JointImpedance
+from lightrocks.adapters.kernels import DT, S_PEAK, S_R0, S_TURNED, S_YAW
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     FT_SITE,
@@ -194,8 +196,7 @@ class RobotView:
         """Built at most once per tick: several predicates usually read it."""
         cell = self._cell
         if cell.wrench_value is None:
-            fx, fy, fz, tx, ty, tz = cell.wrist.values
-            cell.wrench_value = Wrench(Vector3(fx, fy, fz), Vector3(tx, ty, tz))
+            cell.wrench_value = Wrench.of_floats(*cell.wrist.wrench.tolist())
         return cell.wrench_value
 
     @property
@@ -208,8 +209,8 @@ class RobotView:
 
     @property
     def travel(self) -> Vector3:
-        (x, y, z), (x0, y0, z0) = self._cell.arm.point, self._cell.travel_origin
-        return Vector3(x - x0, y - y0, z - z0)
+        (x, y, z), (x0, y0, z0) = self._cell.arm.position.tolist(), self._cell.travel_origin
+        return Vector3.of_floats(x - x0, y - y0, z - z0)
 
     @property
     def turned(self) -> float:
@@ -292,6 +293,7 @@ class SimulatedCell:
         perception_noise: tuple[float, float] = (0.0, 0.0),
         video: str | None = None,
     ) -> None:
+        kernels.warm_up()
         self.plant = type(self).PLANT(scene)
         self.scene = scene
         self.noise = (float(perception_noise[0]), float(perception_noise[1]))
@@ -306,11 +308,7 @@ class SimulatedCell:
         self.grip_start = 0.0
         self.grip_settled = False
         self.camera_done = False
-        self.turned = 0.0
-        self.peak_force = 0.0
-        self._yaw = 0.0
         self.travel_origin = (0.0, 0.0, 0.0)
-        self._r0 = np.eye(3).tolist()
         self.wrench_value: Wrench | None = None
         """The current tick's ``robot.wrench`` once a predicate has read it."""
         self._live = LiveSnapshot(self)
@@ -367,26 +365,35 @@ class SimulatedCell:
         ends = [self.time + c.budget - DT / 2 for c in commands]
         results: list[CommandResult | None] = [None] * len(commands)
         live = self._live
-        ticked = [
+        pending = [
             (index, c, settled, value, _first_holding(c.stop), ends[index])
             for index, (c, (settled, value)) in enumerate(zip(commands, started, strict=True))
         ]
+        remaining = len(pending)
         running = commands[0]
+        tick = self._tick
         try:
-            while None in results:
-                self._tick()
-                for index, c, settled, value, first_holding, end in ticked:
-                    if results[index] is not None:
-                        continue
+            while remaining:
+                tick()
+                now = self.time
+                for entry in pending:
+                    index, c, settled, value, first_holding, end = entry
                     running = c
+                    result = None
                     if settled():
                         fired = first_holding(live)
                         if fired is not None:
-                            results[index] = CommandResult(fired, value)
-                    if results[index] is None and self.time >= end:
-                        results[index] = CommandResult(TIMEOUT)
-                    if results[index] is not None and c.device == "robot" and None in results:
+                            result = CommandResult(fired, value)
+                    if result is None:
+                        if now < end:
+                            continue
+                        result = CommandResult(TIMEOUT)
+                    results[index] = result
+                    remaining -= 1
+                    if c.device == "robot" and remaining:
                         self.hold()  # the other commands go on
+                if len(pending) > remaining:
+                    pending = [entry for entry in pending if results[entry[0]] is None]
         except AdapterError:
             raise
         except Exception as exc:
@@ -482,12 +489,21 @@ class SimulatedCell:
 
     # -- the 1 kHz loop ------------------------------------------------------------------------
 
+    @property
+    def turned(self) -> float:
+        """Signed rotation [rad] of the TCP about its own z since command start."""
+        return float(self.arm.sensing[S_TURNED])
+
+    @property
+    def peak_force(self) -> float:
+        """Largest magnitude [N] of the wrist force since command start."""
+        return float(self.arm.sensing[S_PEAK])
+
     def _start_command(self) -> None:
-        self.travel_origin = tuple(self.arm.tcp.translation.tolist())
-        self.turned = 0.0
-        self.peak_force = 0.0
-        self._yaw = 0.0
-        self._r0 = self.arm.tcp.rotation.tolist()
+        self.travel_origin = self.arm.point
+        sensing = self.arm.sensing
+        sensing[S_TURNED] = sensing[S_PEAK] = sensing[S_YAW] = 0.0
+        sensing[S_R0 : S_R0 + 9] = self.arm.rotation.reshape(9)
 
     def _make_wrist_sensor(self) -> WristSensor:
         """Load model of the hand subtree (mass, centre of mass in the ft frame) from MuJoCo."""
@@ -497,28 +513,20 @@ class SimulatedCell:
         site = model.site(FT_SITE).id
         rotation = data.site_xmat[site].reshape(3, 3)
         com = rotation.T @ (data.subtree_com[hand] - data.site_xpos[site])
-        return WristSensor(float(model.body_subtreemass[hand]), com)
+        return WristSensor(self.arm.sensing, float(model.body_subtreemass[hand]), com)
 
     def _sense(self) -> None:
-        """Update kinematics and sensors from the plant state."""
-        arm = self.arm
-        arm.update()
-        self.wrist.update(self.plant.wrist(), arm.ft_rotation, arm.ft_position, arm.point)
+        """Update kinematics and sensors (wrist, ``peakForce``, ``turned``) from the plant
+        state: one native call of the arm state."""
+        self.arm.sense()
         self.wrench_value = None
-        fx, fy, fz = self.wrist.values[:3]
-        self.peak_force = max(self.peak_force, math.sqrt(fx * fx + fy * fy + fz * fz))
-        (c0, _, _), (c1, _, _), (c2, _, _) = arm.rotation.tolist()
-        (a0, b0, _), (a1, b1, _), (a2, b2, _) = self._r0
-        cos = c0 * a0 + c1 * a1 + c2 * a2  # the first column of R₀ᵀ R, as NumPy sums it
-        sin = c0 * b0 + c1 * b1 + c2 * b2
-        yaw = math.atan2(sin, cos)
-        self.turned += (yaw - self._yaw + math.pi) % (2 * math.pi) - math.pi
-        self._yaw = yaw
 
     def _tick(self) -> None:
+        """Control, step, sense (``_sense`` inlined: a Python call costs ~0.1 µs per tick)."""
         self.plant.step(self.controller.torque(self.arm), self.grip)
         self.time += DT
-        self._sense()
+        self.arm.sense()
+        self.wrench_value = None
         if self.recorder is not None:
             self.recorder.tick(self.time, self.plant)
 

@@ -54,18 +54,3 @@ FINGER_DAMPING = 200.0
 GRIPPER_BAND = 0.002
 """Within this distance [m] of the end of travel the finger force fades out linearly, so an
 empty gripper does not press its fingers into their (soft) joint limits."""
-
-
-def finger_push(grip: float, fingers: list[float], closed: float) -> tuple[float, float]:
-    """Signed drive (> 0 opens) of each finger at positions ``fingers``: ``|grip|`` fading out
-    linearly within GRIPPER_BAND of the target, ``closed`` if ``grip`` > 0 else fully open.
-
-    Plain floats: called every tick, where ``numpy.clip`` on two values costs ~3 µs.
-    """
-    target = closed if grip > 0 else FINGER_TRAVEL
-    left, right = fingers
-    size = abs(grip)
-    return (
-        size * min(max((target - left) / GRIPPER_BAND, -1.0), 1.0),
-        size * min(max((target - right) / GRIPPER_BAND, -1.0), 1.0),
-    )

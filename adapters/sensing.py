@@ -10,15 +10,18 @@ from the robot model) is removed on every tick, for every orientation of the han
 by an explicit ``tare()``, which the adapters call once after settling in the ready pose and
 which callers may repeat when they know the tool is free. The result is then shifted to the TCP
 and low-pass filtered (first order, ``CUTOFF_HZ``) against impact spikes of stiff contacts.
+
+The per-tick arithmetic is adapters.kernels.sense, run by the arm state right after it takes
+the plant's state (``ArmState.sense``); this class owns the parameters and the results in the
+arm state's sensing buffer.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
 
-from lightrocks.adapters.control import DT
+from lightrocks.adapters import kernels as k
+from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.vec import cross
 
 CUTOFF_HZ = 40.0
@@ -28,56 +31,19 @@ GRAVITY = np.array([0.0, 0.0, -9.81])
 class WristSensor:
     """Turns raw wrist readings into the filtered environment wrench at the TCP."""
 
-    def __init__(self, load_mass: float, load_com: np.ndarray) -> None:
-        """``load_com`` is the centre of mass of the hand subtree in the ft site frame."""
+    def __init__(self, buffer: np.ndarray, load_mass: float, load_com: np.ndarray) -> None:
+        """``buffer`` is the sensing buffer (layout in adapters.kernels); ``load_com`` is the
+        centre of mass of the hand subtree in the ft site frame."""
+        self.buffer = buffer
         self.load_weight = load_mass * GRAVITY
         self.load_com = np.asarray(load_com, dtype=float)
-        self.offset = np.zeros(6)
-        self._offset = (0.0,) * 6
-        self.wrench = np.zeros(6)
+        buffer[k.S_WEIGHT : k.S_WEIGHT + 3] = self.load_weight
+        buffer[k.S_LOAD_COM : k.S_LOAD_COM + 3] = self.load_com
+        self.offset = buffer[k.S_OFFSET : k.S_OFFSET + 6]
+        self.wrench = buffer[k.S_VALUES : k.S_VALUES + 6]
         """Filtered wrench at the TCP in world axes: force [N] then torque [Nm]."""
-        self.values = (0.0,) * 6
-        """``wrench`` as floats, for readers on the hot path."""
         tau = 1.0 / (2.0 * np.pi * CUTOFF_HZ)
-        self._alpha = DT / (tau + DT)
-        self._weight = tuple(self.load_weight.tolist())
-
-    def update(
-        self,
-        raw: np.ndarray,
-        ft_rotation: np.ndarray,
-        ft_position: np.ndarray,
-        tcp_position: Sequence[float],
-    ) -> None:
-        """Feed one raw reading (see module docstring) with the ft site pose and TCP position.
-
-        Plain float arithmetic, the same operations in the same order as their NumPy form:
-        on 3- and 6-vectors it is several times faster than NumPy calls.
-        """
-        rx, ry, rz, sx, sy, sz = raw.tolist()
-        ox, oy, oz, px, py, pz = self._offset
-        lx, ly, lz = (ft_rotation @ self.load_com).tolist()
-        wx, wy, wz = self._weight
-        fx, fy, fz = -rx - ox - wx, -ry - oy - wy, -rz - oz - wz
-        tx = -sx - px - (ly * wz - lz * wy)
-        ty = -sy - py - (lz * wx - lx * wz)
-        tz = -sz - pz - (lx * wy - ly * wx)
-        (ax, ay, az), (bx, by, bz) = ft_position.tolist(), tcp_position
-        dx, dy, dz = ax - bx, ay - by, az - bz
-        tx += dy * fz - dz * fy
-        ty += dz * fx - dx * fz
-        tz += dx * fy - dy * fx
-        a = self._alpha
-        vx, vy, vz, ux, uy, uz = self.values
-        self.values = values = (
-            vx + (fx - vx) * a,
-            vy + (fy - vy) * a,
-            vz + (fz - vz) * a,
-            ux + (tx - ux) * a,
-            uy + (ty - uy) * a,
-            uz + (tz - uz) * a,
-        )
-        self.wrench[:] = values
+        buffer[k.S_ALPHA] = DT / (tau + DT)
 
     def tare(self, raw: np.ndarray, ft_rotation: np.ndarray) -> None:
         """Declare the tool free: the current residual becomes the zero of the sensor."""
@@ -85,7 +51,5 @@ class WristSensor:
         residual = -raw
         residual[:3] -= self.load_weight
         residual[3:] -= cross(lever, self.load_weight)
-        self.offset = residual
-        self._offset = tuple(residual.tolist())
+        self.offset[:] = residual
         self.wrench[:] = 0.0
-        self.values = (0.0,) * 6

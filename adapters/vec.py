@@ -10,9 +10,3 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     a0, a1, a2 = a[0], a[1], a[2]
     b0, b1, b2 = b[0], b[1], b[2]
     return np.array((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0))
-
-
-def symmetrize_upper(matrix: np.ndarray, lower: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
-    """Fill the strict lower triangle from the upper one (Pinocchio's crba fills the upper)."""
-    matrix[lower] = matrix.T[lower]
-    return matrix

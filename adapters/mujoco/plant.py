@@ -12,10 +12,12 @@ from typing import Any
 import mujoco
 import numpy as np
 
+from lightrocks.adapters import kernels as k
 from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState
-from lightrocks.adapters.control import DT
+from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.mujoco.arm import MujocoArm
+from lightrocks.adapters.mujoco.data_view import data_view, function_address
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -24,9 +26,12 @@ from lightrocks.adapters.robot_model import (
     FT_SITE,
     NV,
     READY_Q,
-    finger_push,
+    TCP_SITE,
 )
 from lightrocks.adapters.scene_registry import load_model
+
+_ARRAYS = ("qpos", "qvel", "site_xpos", "site_xmat", "qfrc_bias", "ctrl", "sensordata")
+"""The arrays of ``data`` a tick reads or writes."""
 
 
 class MujocoPlant:
@@ -48,7 +53,6 @@ class MujocoPlant:
             raise ValueError(f"robot actuators of scene {scene!r} are not contiguous")
         self.q = self.data.qpos[qa : qa + NV]
         self.v = self.data.qvel[va : va + NV]
-        self._fingers = self.q[ARM_DOF:]
         self.q[:ARM_DOF] = READY_Q
         self.q[ARM_DOF:] = FINGER_TRAVEL
         mujoco.mj_forward(self.model, self.data)
@@ -56,47 +60,57 @@ class MujocoPlant:
         self._force = int(sensor("ft_force").adr[0])
         if int(sensor("ft_torque").adr[0]) != self._force + 3:
             raise ValueError("sensor ft_torque must follow ft_force in lwr.xml")
-        site = self.model.site(FT_SITE).id
-        self._site_rotation = self.data.site_xmat[site].reshape(3, 3)
-        self._site_wrench = self.data.sensordata[self._force : self._force + 6].reshape(2, 3)
-        """Views into ``data``: read in place every tick, never copied."""
-        self._raw = np.zeros(6)
-        self._raw_rows = self._raw.reshape(2, 3)
-        self._arm_ctrl = self.data.ctrl[self._ctrl : self._ctrl + ARM_DOF]
-        self._finger_ctrl = self.data.ctrl[self._ctrl + ARM_DOF : self._ctrl + NV]
+        tcp, ft = self.model.site(TCP_SITE).id, self.model.site(FT_SITE).id
+        self._mj, at = data_view(self.data, _ARRAYS)
+        """``data`` as one array (see data_view), with the offsets of ``index``."""
+        index = np.zeros(k.M_SIZE, dtype=np.int64)
+        index[k.M_QPOS], index[k.M_QVEL] = at["qpos"] + qa, at["qvel"] + va
+        index[k.M_TCP_XPOS], index[k.M_FT_XPOS] = (
+            at["site_xpos"] + 3 * tcp,
+            at["site_xpos"] + 3 * ft,
+        )
+        index[k.M_TCP_XMAT], index[k.M_FT_XMAT] = (
+            at["site_xmat"] + 9 * tcp,
+            at["site_xmat"] + 9 * ft,
+        )
+        index[k.M_BIAS], index[k.M_CTRL] = at["qfrc_bias"] + va, at["ctrl"] + self._ctrl
+        index[k.M_FORCE], index[k.M_VADR] = at["sensordata"] + self._force, va
+        index[k.M_MODEL], index[k.M_DATA] = self.model._address, self.data._address
+        index[k.M_TCP], index[k.M_NV] = tcp, self.model.nv
+        index[k.M_JAC_SITE] = function_address("mj_jacSite")
+        index[k.M_FULL_M] = function_address("mj_fullM")
+        self._index = index
         self._scene = scene
         self._scene_step = scene_hooks.step_hook(scene)
-        self.arm: ArmState = MujocoArm(self.model, self.data, qa, va)
-        self._read_wrist()
-        self._begin_step()
-
-    def step(self, tau: np.ndarray, grip: float) -> None:
-        """Arm torques straight to the motors; each finger pushes with the grip force.
-
-        The finger joint damping sets the finger speed; the force fades out within
-        GRIPPER_BAND of the end of travel (see robot_model).
-        """
-        self._arm_ctrl[:] = tau
-        self._finger_ctrl[:] = finger_push(grip, self._fingers.tolist(), 0.0)
-        mujoco.mj_step2(self.model, self.data)
-        self._read_wrist()
-        self._begin_step()
-
-    def _begin_step(self) -> None:
-        """The scene's hook, then the first half of the next step."""
+        self.arm: ArmState = MujocoArm(self.model, self.data, self._mj, self._index)
+        self.arm.sensing[k.S_SENSOR_ROT : k.S_SENSOR_ROT + 9] = self.data.site_xmat[ft]
         if self._scene_step is not None:
             self._scene_step(self.model, self.data)
         mujoco.mj_step1(self.model, self.data)
 
-    def _read_wrist(self) -> None:
-        """Rotate the force/torque sensors into world axes with the site pose they were
-        computed at, before ``mj_step1`` moves it."""
-        np.matmul(self._site_wrench, self._site_rotation.T, out=self._raw_rows)
+    def step(self, tau: np.ndarray, grip: float) -> None:
+        """Arm torques straight to the motors; each finger pushes with the grip force; then
+        the second half of this step, the scene's hook and the first half of the next step.
+        The arm state rotates the wrist reading into world axes with the site pose the step
+        computed it at (see adapters.kernels.mujoco_actuate).
+
+        The finger joint damping sets the finger speed; the force fades out within
+        GRIPPER_BAND of the end of travel (see robot_model).
+        """
+        model, data = self.model, self.data
+        arm = self.arm
+        if tau is not arm.tau:
+            arm.tau[:] = tau
+        k.mujoco_actuate(self._mj, arm.buffer, grip, self._index)
+        mujoco.mj_step2(model, data)
+        if self._scene_step is not None:
+            self._scene_step(model, data)
+        mujoco.mj_step1(model, data)
 
     def wrist(self) -> np.ndarray:
-        """The force/torque sensors (site frame) in world axes (the array is reused: valid
-        until the next step)."""
-        return self._raw
+        """The force/torque sensors (site frame) in world axes: the arm state's ``raw``,
+        which its ``sense()``/``update()`` after every step rewrites."""
+        return self.arm.raw
 
     def sync(self) -> None:
         """``data`` is the simulation itself: always current."""

@@ -23,9 +23,9 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 
+from lightrocks.adapters import kernels as k
 from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState, PinocchioArm
-from lightrocks.adapters.control import DT
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -37,7 +37,6 @@ from lightrocks.adapters.robot_model import (
     NV,
     READY_Q,
     TCP_SITE,
-    finger_push,
     load_robot,
 )
 from lightrocks.adapters.scene_registry import load_model
@@ -67,13 +66,17 @@ class PinocchioPlant:
         self.data = mujoco.MjData(self.model)
         joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
         self._qadr = np.array([j.qposadr[0] for j in joints])
-        self._neg_damping = -np.array([self.model.dof_damping[j.dofadr[0]] for j in joints])
-        self._generalized = np.zeros(NV)
+        self._twin = np.zeros(k.TWIN_SIZE)
+        """Parameters and per-step forces (layout in adapters.kernels)."""
+        damping = [self.model.dof_damping[j.dofadr[0]] for j in joints]
+        self._twin[k.T_DAMPING : k.T_DAMPING + NV] = -np.array(damping)
+        self._generalized = self._twin[k.T_GENERALIZED : k.T_GENERALIZED + NV]
         self.robot = load_robot()
         self.robot_data = self.robot.createData()
-        self.q = np.concatenate((READY_Q, [FINGER_TRAVEL, FINGER_TRAVEL]))
-        self.v = np.zeros(NV)
-        self.arm: ArmState = PinocchioArm(self.robot, self.q, self.v)
+        self.arm: ArmState = PinocchioArm(self.robot)
+        self.q, self.v = self.arm.q, self.arm.v
+        """The joint state is the arm state's, integrated in place."""
+        self.q[:ARM_DOF], self.q[ARM_DOF:] = READY_Q, FINGER_TRAVEL
         fingers = [self.robot.getJointId(name) for name in FINGER_JOINTS]
         self._arm = pin.buildReducedModel(self.robot, fingers, pin.neutral(self.robot))
         self._arm_data = self._arm.createData()
@@ -83,25 +86,31 @@ class PinocchioPlant:
         self.sync()
         self._ft_id = self.robot.getFrameId(FT_SITE)
         hand = self.model.body(HAND_BODY).id
-        self._load = tuple((float(self.model.body_subtreemass[hand]) * GRAVITY).tolist())
-        self._load_com = self._in_body(hand, self.data.subtree_com[hand])
+        load_com = self._in_body(hand, self.data.subtree_com[hand])
+        self._twin[k.T_LOAD : k.T_LOAD + 3] = float(self.model.body_subtreemass[hand]) * GRAVITY
+        self._twin[k.T_LOAD_COM : k.T_LOAD_COM + 3] = load_com
         self._boxes = self._static_boxes()
-        self._reach = [
-            (*(c - np.abs(r) @ h - REACH).tolist(), *(c + np.abs(r) @ h + REACH).tolist())
-            for c, r, h in self._boxes
-        ]
+        self._reach = np.array(
+            [
+                (*(c - np.abs(r) @ h - REACH), *(c + np.abs(r) @ h + REACH))
+                for c, r, h in self._boxes
+            ]
+        ).reshape(len(self._boxes), 6)
         """Per static box, the world-axis box (x, y, z low, then high) around it that the hand
         origin must enter to touch it."""
+        self._near = np.zeros(len(self._boxes), dtype=np.bool_)
+        """Which boxes the hand is near, per step."""
         self._frames, self._points = self._contact_points()
-        self._hand = self.robot_data.oMf[self._frames[0]]
-        self._ft = self.robot_data.oMf[self._ft_id]
-        """Placements of the hand and the ft site: references into ``robot_data``."""
-        self._contact = np.zeros(6)
+        self._hand_position = self.robot_data.oMf[self._frames[0]].translation
+        self._ft_rotation = self.robot_data.oMf[self._ft_id].rotation
+        """Views into ``robot_data``, which every forward kinematics rewrites."""
+        self._contact = self._twin[k.T_CONTACT : k.T_CONTACT + 6]
+        """Environment wrench on the hand subtree at the ft site, world axes."""
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
         self._fixture = scene_hooks.fixture_twin(scene)
         self._grasp = 0.0
         """Finger position [m] where the fingers stop on a grasped fixture part (0: none)."""
-        """Environment wrench on the hand subtree at the ft site, world axes."""
+        k.twin_wrist(self.arm.buffer, self._twin, self._ft_rotation)
 
     @property
     def fixture(self) -> scene_hooks.FixtureTwin | None:
@@ -144,19 +153,21 @@ class PinocchioPlant:
     def step(self, tau: np.ndarray, grip: float) -> None:
         """One DT: contacts, arm dynamics, then the first-order fingers."""
         pin.framesForwardKinematics(self.robot, self.robot_data, self.q)
-        generalized = np.multiply(self._neg_damping, self.v, out=self._generalized)
-        self._arm_generalized += tau
-        blocked = self._apply_contacts(generalized)
+        arm, twin = self.arm, self._twin
+        if tau is not arm.tau:
+            arm.tau[:] = tau
+        near = k.twin_forces(arm.buffer, twin, self._hand_position, self._reach, self._near)
+        left = right = False
+        if near:
+            boxes = [box for box, hit in zip(self._boxes, self._near, strict=True) if hit]
+            left, right = self._apply_contacts(self._generalized, boxes)
         if self._fixture is not None:
-            self._apply_fixture(generalized, grip)
-        q, v = self._arm_q, self._arm_v
-        v += DT * pin.aba(self._arm, self._arm_data, q, v, self._arm_generalized)
-        q += DT * v
-        fingers = self.q[ARM_DOF:].tolist()
-        speeds = finger_push(grip / FINGER_DAMPING, fingers, self._grasp)
-        speeds = [0.0 if stop and s < 0 else s for stop, s in zip(blocked, speeds, strict=True)]
-        self.v[ARM_DOF:] = speeds
-        self.q[ARM_DOF:] = [f + DT * s for f, s in zip(fingers, speeds, strict=True)]
+            self._apply_fixture(self._generalized, grip)
+        a = pin.aba(self._arm, self._arm_data, self._arm_q, self._arm_v, self._arm_generalized)
+        k.twin_integrate(
+            arm.buffer, twin, a, self._ft_rotation,
+            grip / FINGER_DAMPING, self._grasp, left, right,
+        )  # fmt: skip
 
     def _apply_fixture(self, generalized: np.ndarray, grip: float) -> None:
         """Step the scene's fixture twin; add its wrench at the TCP to joints and wrist."""
@@ -166,7 +177,7 @@ class PinocchioPlant:
         elif self._grasp == 0.0 and self._fixture.graspable(tcp.translation):
             self._grasp = GRASP_WIDTH / 2
         closed_on_part = self._grasp > 0 and bool(np.all(self.q[ARM_DOF:] < self._grasp + 1e-3))
-        wrench = self._fixture.step(DT, tcp.translation, tcp.rotation, closed_on_part)
+        wrench = self._fixture.step(k.DT, tcp.translation, tcp.rotation, closed_on_part)
         if not np.any(wrench):
             return
         jacobian = pin.computeFrameJacobian(
@@ -177,19 +188,13 @@ class PinocchioPlant:
         self._contact[:3] += wrench[:3]
         self._contact[3:] += wrench[3:] + cross(tcp.translation - ft, wrench[:3])
 
-    def _apply_contacts(self, generalized: np.ndarray) -> list[bool]:
-        """Add contact forces to ``generalized``; return which fingers touch a box."""
+    def _apply_contacts(
+        self, generalized: np.ndarray, near: list[tuple[np.ndarray, np.ndarray, np.ndarray]]
+    ) -> list[bool]:
+        """Add the contact forces of the ``near`` boxes to ``generalized`` and the contact
+        wrench; return which fingers touch a box."""
         data = self.robot_data
-        self._contact[:] = 0.0
         blocked = [False, False]
-        x, y, z = self._hand.translation.tolist()
-        near = [
-            box
-            for box, (x0, y0, z0, x1, y1, z1) in zip(self._boxes, self._reach, strict=True)
-            if x0 < x < x1 and y0 < y < y1 and z0 < z < z1
-        ]
-        if not near:
-            return blocked
         ft = data.oMf[self._ft_id].translation
         jacobians_ready = False
         for index, (frame, local) in enumerate(zip(self._frames, self._points, strict=True)):
@@ -232,20 +237,10 @@ class PinocchioPlant:
         return pressure * normal + friction
 
     def wrist(self) -> np.ndarray:
-        """Quasi-static reading: what link7 must exert to hold the load against contacts."""
-        lx, ly, lz = (self._ft.rotation @ self._load_com).tolist()
-        wx, wy, wz = self._load
-        fx, fy, fz, tx, ty, tz = self._contact.tolist()
-        return np.array(
-            (
-                -fx - wx,
-                -fy - wy,
-                -fz - wz,
-                -tx - (ly * wz - lz * wy),
-                -ty - (lz * wx - lx * wz),
-                -tz - (lx * wy - ly * wx),
-            )
-        )
+        """The raw reading of the last step: the arm state's ``raw``, quasi-static: what link7
+        must exert to hold the load against the contacts (the ft site pose and contacts of the
+        step's start)."""
+        return self.arm.raw
 
     def sync(self) -> None:
         """Copy the robot state into the MuJoCo data for ground truth and rendering."""

@@ -1,5 +1,7 @@
 """Both adapters implement runtime.contract.Adapter and reject bad input with clear errors."""
 
+import dataclasses
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -108,3 +110,16 @@ def test_gripper_closes_empty_and_opens(adapter):
 
 def test_measurements_is_a_dict(adapter):
     assert isinstance(adapter.measurements(), dict)
+
+
+def test_value_objects_built_from_floats_equal_the_dataclass_ones():
+    """The adapters' fast constructors make the same frozen values as the dataclasses."""
+    vector = Vector3.of_floats(1.0, -2.0, 3.5)
+    assert vector == Vector3(1.0, -2.0, 3.5) and hash(vector) == hash(Vector3(1.0, -2.0, 3.5))
+    assert repr(vector) == repr(Vector3(1.0, -2.0, 3.5))
+    wrench = Wrench.of_floats(1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
+    assert wrench == Wrench(Vector3(1.0, 2.0, 3.0), Vector3(4.0, 5.0, 6.0))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        vector.x = 0.0  # type: ignore[misc]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        wrench.force = vector  # type: ignore[misc]

@@ -10,8 +10,11 @@ joints do not start at address 0.
 import numpy as np
 import pytest
 
+from lightrocks.adapters import kernels as k
 from lightrocks.adapters.arm import SLOW_EVERY, PinocchioArm
+from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.mujoco.plant import MujocoPlant
+from lightrocks.adapters.pinocchio.plant import PinocchioPlant
 from lightrocks.adapters.robot_model import ARM_DOF, NV, load_robot
 
 TOLERANCE = 1e-9
@@ -72,3 +75,30 @@ def test_arm_states_agree_on_random_configurations() -> None:
             plant.arm.update()
             twin.update()
         _assert_same(plant.arm, twin)
+
+
+def test_the_flat_view_of_the_data_reads_and_writes_mujocos_arrays() -> None:
+    plant = MujocoPlant("screwing")
+    names = ("qpos", "ctrl", "site_xmat", "sensordata")
+    view, at = data_view(plant.data, names)
+    for name in names:
+        array = getattr(plant.data, name).reshape(-1)
+        assert np.array_equal(view[at[name] : at[name] + array.size], array), name
+    view[at["ctrl"] + 2] = 12.5
+    assert plant.data.ctrl[2] == 12.5
+
+
+@pytest.mark.parametrize("kind", ["mujoco", "twin"])
+def test_update_takes_the_state_without_advancing_the_wrist_sensing(kind: str) -> None:
+    """``sense()`` filters the wrist reading once per tick; ``update()`` leaves it alone."""
+    plant = MujocoPlant("empty") if kind == "mujoco" else PinocchioPlant("empty")
+    filtered = slice(k.S_VALUES, k.S_R0)
+    plant.arm.sensing[k.S_ALPHA] = 0.5  # as a WristSensor sets it
+    plant.step(np.full(ARM_DOF, 5.0), grip=0.0)
+    plant.arm.sense()
+    after_sense = plant.arm.sensing[filtered].copy()
+    plant.step(np.full(ARM_DOF, 5.0), grip=0.0)
+    plant.arm.update()
+    assert np.array_equal(plant.arm.sensing[filtered], after_sense)
+    plant.arm.sense()
+    assert not np.array_equal(plant.arm.sensing[filtered], after_sense)

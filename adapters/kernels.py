@@ -1,0 +1,762 @@
+"""The arithmetic of the 1 kHz tick as native code (numba), one call per phase of a tick.
+
+In Python every NumPy or Pinocchio call costs a fixed ~0.5 µs whatever the size of its
+arrays, and the controller, the arm state and the wrist sensing needed about 40 of them per
+tick, four times the cost of the physics step itself. Here each phase is one compiled
+function over preallocated flat buffers: the controller (``cartesian_torque``,
+``joint_torque``), the motor commands (``mujoco_actuate``) and the state and sensing after a
+step (``mujoco_sense``, ``pinocchio_sense``; the twin's ``twin_forces``/``twin_integrate``
+around Pinocchio's ABA). Each buffer has a fixed layout (the offsets below); the Python objects
+that own a buffer expose named views of it, so everything outside the tick reads arrays as
+before.
+
+The functions are compiled once and cached (numba's ``cache=True``) in ``__pycache__`` next to
+this file, or in the user's cache folder where that is not writable (``NUMBA_CACHE_DIR``
+overrides both). The cache is keyed on this file (its time stamp and size) and the CPU, and
+written atomically, so processes may share it; everything the compiled code depends on is in
+this file. A cold start compiles for ~7 s; later starts load in ~0.2 s (``warm_up``).
+
+``exp3`` and ``log3`` follow Pinocchio's algorithms (same Taylor branches and thresholds),
+matrix products sum in index order: results equal NumPy's and Pinocchio's to rounding, not bit
+for bit (their BLAS/Eigen kernels sum in other orders).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from llvmlite import ir
+from numba import njit, types
+from numba.extending import intrinsic
+
+from lightrocks.adapters import robot_model
+
+ARM_DOF, NV = 7, 9
+FINGER_TRAVEL, GRIPPER_BAND = 0.04, 0.002
+"""The robot facts the compiled code uses, repeated here because numba's cache is keyed on this
+file alone: a change in robot_model that is not made here too fails at import instead of
+running stale cached code."""
+if (ARM_DOF, NV, FINGER_TRAVEL, GRIPPER_BAND) != (
+    robot_model.ARM_DOF,
+    robot_model.NV,
+    robot_model.FINGER_TRAVEL,
+    robot_model.GRIPPER_BAND,
+):
+    raise ImportError("adapters/kernels.py must repeat the constants of adapters/robot_model.py")
+
+DT = 0.001
+"""Control period [s]."""
+
+_JIT = {"cache": True, "error_model": "numpy"}
+"""NumPy's error model: a division by zero gives inf/nan as in NumPy, with no Python check."""
+
+_EPS = float(np.finfo(float).eps)
+_PREC2 = _EPS ** (1.0 / 3.0)
+_PREC3 = _EPS**0.25
+"""Pinocchio's ``TaylorSeriesExpansion<double>::precision<2>()`` and ``<3>()``."""
+
+# -- the arm state buffer (adapters.arm.ArmState.buffer) ----------------------------------------
+STATE = 0
+"""Joint positions (NV), then velocities (NV)."""
+POS = STATE + 2 * NV
+ROT = POS + 3
+FT_POS = ROT + 9
+FT_ROT = FT_POS + 3
+TWIST = FT_ROT + 9
+BIAS = TWIST + 6
+JAC = BIAS + ARM_DOF
+"""TCP Jacobian of the arm joints, 6 x ARM_DOF, row-major. Rotations are row-major too."""
+MASS_INV = JAC + 6 * ARM_DOF
+"""Inverse of the arm block of the mass matrix, refreshed every SLOW_EVERY ticks."""
+MASS_DIAG = MASS_INV + ARM_DOF * ARM_DOF
+"""Diagonal of the arm block of the mass matrix, refreshed with MASS_INV."""
+TAU = MASS_DIAG + ARM_DOF
+"""The controller's arm torques for the next step."""
+SENSING = TAU + ARM_DOF
+"""Start of the sensing block (offsets S_* below, relative to it)."""
+
+# -- the Cartesian impedance buffer (adapters.control.CartesianImpedance) -------------------------
+C_K = 0
+C_D = C_K + 6
+C_P0 = C_D + 6
+C_DP = C_P0 + 3
+C_DR = C_DP + 3
+C_R0 = C_DR + 3
+C_RGOAL = C_R0 + 9
+C_PGOAL = C_RGOAL + 9
+C_TWSET = C_PGOAL + 3
+C_DURATION = C_TWSET + 6
+C_ELAPSED = C_DURATION + 1
+C_MOVING = C_ELAPSED + 1
+C_OFFSET = C_MOVING + 1
+"""1.0 when the task frame is not the TCP."""
+C_TASK_R = C_OFFSET + 1
+C_TASK_P = C_TASK_R + 9
+C_NS_POSTURE = C_TASK_P + 3
+C_NS_STATE = C_NS_POSTURE + ARM_DOF
+"""Null-space torque = posture term + (ARM_DOF x 2 NV matrix) @ joint state."""
+C_ERRORS = C_NS_STATE + ARM_DOF * 2 * NV
+"""Rows: position error, linear and angular error velocity, world axes."""
+C_LOCAL = C_ERRORS + 9
+"""The rows of the errors in task axes."""
+C_EROT = C_LOCAL + 9
+C_FRAME_JAC = C_EROT + 3
+C_FRAME_ROT = C_FRAME_JAC + 6 * ARM_DOF
+C_FRAME_POS = C_FRAME_ROT + 9
+C_FRAME_TWIST = C_FRAME_POS + 3
+C_RATIO = C_FRAME_TWIST + 6
+"""Damping ratios."""
+C_POSTURE = C_RATIO + 6
+"""Null-space posture: the arm configuration at command start."""
+C_TICKS = C_POSTURE + ARM_DOF
+"""Ticks run so far: the slow terms are refreshed on every SLOW_EVERY-th, starting with the
+first."""
+C_SCRATCH = C_TICKS + 1
+"""Room for the intermediate results of a tick (no allocation per tick)."""
+CARTESIAN_SIZE = C_SCRATCH + 48
+
+SLOW_EVERY = 10
+"""Ticks between refreshes of the mass matrix and of what the controllers derive from it, which
+change slowly with the configuration."""
+NULLSPACE_STIFFNESS = 10.0
+"""Posture stiffness [Nm/rad] pulling the elbow towards the configuration at command start."""
+NULLSPACE_DAMPING = 2.0
+LAMBDA_REGULARISATION = 1e-6
+"""Added to the diagonal of Λ⁻¹ before inverting it (near singular configurations)."""
+
+# -- the joint impedance buffer (adapters.control.JointImpedance) -------------------------------
+J_K = 0
+J_RATIO = J_K + ARM_DOF
+"""Damping ratios."""
+J_Q0 = J_RATIO + ARM_DOF
+J_DQ = J_Q0 + ARM_DOF
+J_VSET = J_DQ + ARM_DOF
+J_DURATION = J_VSET + ARM_DOF
+J_ELAPSED = J_DURATION + 1
+JOINT_SIZE = J_ELAPSED + 1
+
+# -- the sensing buffer (adapters.sensing.WristSensor and the cell's motion sensors) ------------
+S_RAW = 0
+"""Raw wrist wrench (see adapters.sensing), input of each tick."""
+S_OFFSET = S_RAW + 6
+S_WEIGHT = S_OFFSET + 6
+S_LOAD_COM = S_WEIGHT + 3
+S_ALPHA = S_LOAD_COM + 3
+S_VALUES = S_ALPHA + 1
+"""Filtered wrench at the TCP, world axes."""
+S_PEAK = S_VALUES + 6
+S_TURNED = S_PEAK + 1
+S_YAW = S_TURNED + 1
+S_R0 = S_YAW + 1
+"""TCP rotation at command start."""
+S_SENSOR_ROT = S_R0 + 9
+"""MuJoCo: the ft site's rotation when the step computed the force/torque sensors, whose
+values are in that frame."""
+SENSE_SIZE = S_SENSOR_ROT + 9
+ARM_SIZE = SENSING + SENSE_SIZE
+
+# -- the Pinocchio twin's buffer (adapters.pinocchio.plant.PinocchioPlant) -------------------------
+T_DAMPING = 0
+"""Minus the joint damping of the robot joints."""
+T_LOAD = T_DAMPING + NV
+T_LOAD_COM = T_LOAD + 3
+"""Weight of the hand subtree [N] and its centre of mass in the ft frame."""
+T_CONTACT = T_LOAD_COM + 3
+"""Contact wrench on the hand subtree at the ft site, world axes."""
+T_GENERALIZED = T_CONTACT + 6
+"""Generalized forces of the robot joints."""
+TWIN_SIZE = T_GENERALIZED + NV
+
+# -- offsets into MuJoCo's data (adapters.mujoco.data_view) for the mujoco_* functions -----------
+M_QPOS, M_QVEL, M_TCP_XPOS, M_TCP_XMAT, M_FT_XPOS, M_FT_XMAT, M_BIAS, M_CTRL, M_FORCE = range(9)
+M_VADR, M_MODEL, M_DATA, M_TCP, M_JAC_SITE, M_FULL_M, M_NV = range(9, 16)
+"""``index`` array: offsets in the flat view of ``data`` of the robot's first qpos and qvel,
+the TCP and ft site positions and rotations, the arm's first bias force, the robot's first
+actuator control and the ft_force sensor (ft_torque follows); then the robot's first dof
+(a column of ``mj_jacSite``'s Jacobians), the addresses of the ``mjModel`` and ``mjData``, the
+TCP site id, the addresses of MuJoCo's ``mj_jacSite`` and ``mj_fullM``, and ``nv``."""
+M_SIZE = M_NV + 1
+
+
+@njit(**_JIT)
+def finger_push(grip: float, left: float, right: float, closed: float) -> tuple[float, float]:
+    """Signed drive (> 0 opens) of each finger at positions ``left``, ``right``: ``|grip|``
+    fading out linearly within GRIPPER_BAND of the target, ``closed`` if ``grip`` > 0 else
+    fully open."""
+    target = closed if grip > 0 else FINGER_TRAVEL
+    size = abs(grip)
+    return (
+        size * min(max((target - left) / GRIPPER_BAND, -1.0), 1.0),
+        size * min(max((target - right) / GRIPPER_BAND, -1.0), 1.0),
+    )
+
+
+@njit(**_JIT)
+def mujoco_actuate(mj: np.ndarray, arm: np.ndarray, grip: float, index: np.ndarray) -> None:
+    """Before a step: arm torques to the arm motors, each finger motor pushes with the grip
+    force; and the ft site's rotation, at which the step computes the wrist sensors, is kept
+    (the next ``mj_step1`` moves the site)."""
+    ctrl, qpos, s = index[M_CTRL], index[M_QPOS], arm[SENSING:]
+    for j in range(ARM_DOF):
+        mj[ctrl + j] = arm[TAU + j]
+    left, right = finger_push(grip, mj[qpos + ARM_DOF], mj[qpos + ARM_DOF + 1], 0.0)
+    mj[ctrl + ARM_DOF], mj[ctrl + ARM_DOF + 1] = left, right
+    for i in range(9):
+        s[S_SENSOR_ROT + i] = mj[index[M_FT_XMAT] + i]
+
+
+@njit(**_JIT)
+def exp3(v0: float, v1: float, v2: float, out: np.ndarray) -> None:
+    """Rotation matrix of the rotation vector (Pinocchio's ``exp3``) into ``out`` (9, row-major:
+    flat arrays, since a reshape costs a numba call ~25 ns)."""
+    t2 = v0 * v0 + v1 * v1 + v2 * v2 + _EPS * _EPS
+    t = math.sqrt(t2)
+    st, ct = math.sin(t), math.cos(t)
+    if t > _PREC3:
+        a_vxvx, a_vx = (1 - ct) / t2, st / t
+    else:
+        a_vxvx, a_vx, ct = 0.5 - t2 / 24, 1.0 - t2 / 6, 1.0 - t2 / 2
+    a0, a1, a2 = a_vxvx * v0, a_vxvx * v1, a_vxvx * v2
+    out[0] = a0 * v0 + ct
+    out[1] = a0 * v1 - a_vx * v2
+    out[2] = a0 * v2 + a_vx * v1
+    out[3] = a1 * v0 + a_vx * v2
+    out[4] = a1 * v1 + ct
+    out[5] = a1 * v2 - a_vx * v0
+    out[6] = a2 * v0 - a_vx * v1
+    out[7] = a2 * v1 + a_vx * v0
+    out[8] = a2 * v2 + ct
+
+
+@njit(**_JIT)
+def _theta_axis(i0: int, val: float, r: np.ndarray, axis: np.ndarray) -> float:
+    """Angle and axis of a rotation ``r`` (9, row-major) near π from its column ``i0``
+    (Pinocchio's ``compute_theta_axis``); returns the angle, ``axis`` receives the unit axis."""
+    i1, i2 = (i0 + 1) % 3, (i0 + 2) % 3
+    s = math.sqrt(val + _EPS + _EPS * _EPS)
+    if r[3 * i2 + i1] < r[3 * i1 + i2]:
+        s = -s
+    axis[i0] = s / 2
+    axis[i1] = 1.0 / (2 * s) * (r[3 * i1 + i0] + r[3 * i0 + i1])
+    axis[i2] = 1.0 / (2 * s) * (r[3 * i2 + i0] + r[3 * i0 + i2])
+    w = 1.0 / (2 * s) * (r[3 * i2 + i1] - r[3 * i1 + i2])
+    norm = math.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
+    axis[0] /= norm
+    axis[1] /= norm
+    axis[2] /= norm
+    return 2 * math.atan2(norm, w)
+
+
+@njit(**_JIT)
+def log3(r_in: np.ndarray, out: np.ndarray, r: np.ndarray) -> None:
+    """Rotation vector of a rotation matrix ``r_in`` (9, row-major) into ``out`` (3):
+    Pinocchio's ``log3``, including its renormalisation and its branches near 0 and π. ``r``
+    (9) is scratch space."""
+    n0 = math.sqrt(r_in[0] ** 2 + r_in[3] ** 2 + r_in[6] ** 2)
+    n1 = math.sqrt(r_in[1] ** 2 + r_in[4] ** 2 + r_in[7] ** 2)
+    for i in range(3):
+        r[3 * i] = r_in[3 * i] / n0
+        r[3 * i + 1] = r_in[3 * i + 1] / n1
+    r[2] = r[3] * r[7] - r[6] * r[4]  # col2 = col0 x col1
+    r[5] = r[6] * r[1] - r[0] * r[7]
+    r[8] = r[0] * r[4] - r[3] * r[1]
+    c0 = r[4] * r[8] - r[7] * r[5]  # col0 = col1 x col2
+    c1 = r[7] * r[2] - r[1] * r[8]
+    c2 = r[1] * r[5] - r[4] * r[2]
+    r[0], r[3], r[6] = c0, c1, c2
+    tr = r[0] + r[4] + r[8]
+    cos_value = (tr - 1) / 2
+    if cos_value < -1 + _PREC2:  # θ near π: the axis from the largest diagonal element
+        axis = np.empty(3)
+        vals = (2 * r[0] - tr + 1, 2 * r[4] - tr + 1, 2 * r[8] - tr + 1)
+        if vals[0] >= vals[1]:
+            i0 = 0 if vals[0] >= vals[2] else 2
+        else:
+            i0 = 1 if vals[1] >= vals[2] else 2
+        theta = _theta_axis(i0, vals[i0], r, axis)
+        out[0], out[1], out[2] = theta * axis[0], theta * axis[1], theta * axis[2]
+        return
+    acos_expansion = math.sqrt(2 * (1 - cos_value) + _EPS * _EPS)
+    if tr <= 3 - _PREC2:
+        theta = math.acos(cos_value) if tr >= -1 + _PREC2 else math.pi - acos_expansion
+    else:
+        theta = acos_expansion
+    a0 = 0.5 * (r[7] - r[5])
+    a1 = 0.5 * (r[2] - r[6])
+    a2 = 0.5 * (r[3] - r[1])
+    if theta >= _PREC2:
+        t = theta / math.sin(theta)
+    else:
+        n2 = a0 * a0 + a1 * a1 + a2 * a2
+        t = 1.0 + n2 / 6 + n2 * n2 * 3 / 40
+    out[0], out[1], out[2] = t * a0, t * a1, t * a2
+
+
+@njit(**_JIT)
+def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
+    """Inverse of a symmetric positive definite matrix by its Cholesky factor L:
+    ``a⁻¹ = L⁻ᵀ L⁻¹`` (numba's ``np.linalg.inv`` needs SciPy's LAPACK)."""
+    n = a.shape[0]
+    low = np.zeros((n, n))
+    for j in range(n):
+        total = a[j, j]
+        for m in range(j):
+            total -= low[j, m] * low[j, m]
+        low[j, j] = math.sqrt(total)
+        for i in range(j + 1, n):
+            total = a[i, j]
+            for m in range(j):
+                total -= low[i, m] * low[j, m]
+            low[i, j] = total / low[j, j]
+    inv = np.zeros((n, n))  # L⁻¹, lower triangular
+    for j in range(n):
+        inv[j, j] = 1.0 / low[j, j]
+        for i in range(j + 1, n):
+            total = 0.0
+            for m in range(j, i):
+                total += low[i, m] * inv[m, j]
+            inv[i, j] = -total / low[i, i]
+    for i in range(n):
+        for j in range(i, n):
+            total = 0.0
+            for m in range(j, n):
+                total += inv[m, i] * inv[m, j]
+            out[i, j] = out[j, i] = total
+
+
+@njit(**_JIT)
+def take_mass(arm: np.ndarray, mass: np.ndarray, first: int, upper: bool) -> None:
+    """The arm block (at dof ``first``) of a mass matrix: its inverse and diagonal into the arm
+    state; with ``upper``, only the upper triangle of ``mass`` is filled (Pinocchio's crba)."""
+    block = np.empty((ARM_DOF, ARM_DOF))
+    for i in range(ARM_DOF):
+        for j in range(ARM_DOF):
+            low, high = (j, i) if upper and i > j else (i, j)
+            block[i, j] = mass[first + low, first + high]
+        arm[MASS_DIAG + i] = block[i, i]
+    spd_inverse(block, arm[MASS_INV : MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, ARM_DOF))
+
+
+@intrinsic
+def _c_call(typingctx, function, arguments):
+    """Call the C function at address ``function`` with a tuple of integer ``arguments``, all
+    passed as pointers but the last, passed as a C int if there are five (MuJoCo's
+    ``mj_jacSite(m, d, jacp, jacr, site)`` and ``mj_fullM(m, d, dst)``)."""
+    count = len(arguments)
+    signature = types.void(function, arguments)
+
+    def codegen(context, builder, sig, args):
+        pointer = ir.IntType(8).as_pointer()
+        values = [builder.extract_value(args[1], i) for i in range(count)]
+        kinds = [pointer] * count
+        if count == 5:
+            kinds[4] = ir.IntType(32)
+        converted = [
+            builder.trunc(v, kind) if kind is not pointer else builder.inttoptr(v, pointer)
+            for v, kind in zip(values, kinds, strict=True)
+        ]
+        target = builder.inttoptr(args[0], ir.FunctionType(ir.VoidType(), kinds).as_pointer())
+        builder.call(target, converted)
+        return context.get_dummy_value()
+
+    return signature, codegen
+
+
+@njit(**_JIT)
+def cartesian_refresh(
+    mass_inv: np.ndarray, jac: np.ndarray, rot: np.ndarray, c: np.ndarray
+) -> None:
+    """The slow terms of Cartesian impedance from the controlled frame's Jacobian and rotation
+    and the inverse arm mass matrix: the damping ``D = 2 ζ sqrt(K Λ_ii)``
+    with the diagonal of the operational-space inertia Λ = (J M⁻¹ Jᵀ)⁻¹ in task axes, and the
+    dynamically consistent null-space projector ``N = I − Jᵀ J̄ᵀ``, ``J̄ = M⁻¹ Jᵀ Λ``, split into
+    a constant posture torque and a matrix acting on the joint state."""
+    mj = np.zeros((ARM_DOF, 6))  # M⁻¹ Jᵀ
+    for i in range(ARM_DOF):
+        for j in range(6):
+            total = 0.0
+            for m in range(ARM_DOF):
+                total += mass_inv[i, m] * jac[j, m]
+            mj[i, j] = total
+    lam_inv = np.zeros((6, 6))
+    for i in range(6):
+        for j in range(6):
+            total = 0.0
+            for m in range(ARM_DOF):
+                total += jac[i, m] * mj[m, j]
+            lam_inv[i, j] = total
+        lam_inv[i, i] += LAMBDA_REGULARISATION
+    lam = np.zeros((6, 6))
+    spd_inverse(lam_inv, lam)
+    for b in range(2):  # the diagonal of diag(R, R)ᵀ Λ diag(R, R)
+        for i in range(3):
+            total = 0.0
+            for m in range(3):
+                for n in range(3):
+                    total += rot[m, i] * lam[3 * b + m, 3 * b + n] * rot[n, i]
+            axis = 3 * b + i
+            c[C_D + axis] = 2.0 * c[C_RATIO + axis] * math.sqrt(c[C_K + axis] * max(total, 0.0))
+    jbar = np.zeros((ARM_DOF, 6))
+    for i in range(ARM_DOF):
+        for j in range(6):
+            total = 0.0
+            for m in range(6):
+                total += mj[i, m] * lam[m, j]
+            jbar[i, j] = total
+    ns = c[C_NS_STATE : C_NS_STATE + ARM_DOF * 2 * NV].reshape(ARM_DOF, 2 * NV)
+    for i in range(ARM_DOF):
+        posture = 0.0
+        for j in range(ARM_DOF):
+            total = 0.0
+            for m in range(6):
+                total += jac[m, i] * jbar[j, m]
+            projector = (1.0 if i == j else 0.0) - total
+            posture += projector * c[C_POSTURE + j]
+            ns[i, j] = -NULLSPACE_STIFFNESS * projector
+            ns[i, NV + j] = -NULLSPACE_DAMPING * projector
+        c[C_NS_POSTURE + i] = NULLSPACE_STIFFNESS * posture
+
+
+@njit(**_JIT)
+def cartesian_frame(arm: np.ndarray, c: np.ndarray) -> None:
+    """Pose, Jacobian and twist of the controlled frame ``tcp * task`` into ``c``, when the task
+    frame is not the TCP (else the controller reads the arm state's). Flat row-major indexing
+    throughout: a reshape costs a numba call."""
+    for i in range(3):
+        for j in range(3):
+            total = 0.0
+            for m in range(3):
+                total += arm[ROT + 3 * i + m] * c[C_TASK_R + 3 * m + j]
+            c[C_FRAME_ROT + 3 * i + j] = total
+        total = 0.0
+        for m in range(3):
+            total += arm[ROT + 3 * i + m] * c[C_TASK_P + m]
+        c[C_FRAME_POS + i] = total + arm[POS + i]
+    dx = c[C_FRAME_POS] - arm[POS]
+    dy = c[C_FRAME_POS + 1] - arm[POS + 1]
+    dz = c[C_FRAME_POS + 2] - arm[POS + 2]
+    jac, fjac = JAC, C_FRAME_JAC
+    for j in range(ARM_DOF):  # linear rows -= skew(d) @ angular rows
+        wx, wy, wz = arm[jac + 21 + j], arm[jac + 28 + j], arm[jac + 35 + j]
+        c[fjac + j] = arm[jac + j] - (dy * wz - dz * wy)
+        c[fjac + 7 + j] = arm[jac + 7 + j] - (dz * wx - dx * wz)
+        c[fjac + 14 + j] = arm[jac + 14 + j] - (dx * wy - dy * wx)
+        c[fjac + 21 + j], c[fjac + 28 + j], c[fjac + 35 + j] = wx, wy, wz
+    for i in range(6):
+        total = 0.0
+        for j in range(ARM_DOF):
+            total += c[fjac + ARM_DOF * i + j] * arm[STATE + NV + j]
+        c[C_FRAME_TWIST + i] = total
+
+
+@njit(**_JIT)
+def cartesian_torque(arm: np.ndarray, c: np.ndarray) -> None:
+    """One tick of Cartesian impedance (see adapters.control.CartesianImpedance) into the arm
+    state's TAU; advances the set point by DT and refreshes the slow terms every SLOW_EVERY
+    ticks."""
+    duration, elapsed = c[C_DURATION], c[C_ELAPSED]
+    s = 1.0 if duration <= 0 else min(elapsed / duration, 1.0)
+    c[C_ELAPSED] = elapsed + DT
+    moving = s < 1.0
+    c[C_MOVING] = 1.0 if moving else 0.0
+    if c[C_OFFSET] == 0.0:  # the controlled frame: the TCP, or computed into c
+        f, rot, pos, jac, twist = arm, ROT, POS, JAC, TWIST
+    else:
+        cartesian_frame(arm, c)
+        f, rot, pos = c, C_FRAME_ROT, C_FRAME_POS
+        jac, twist = C_FRAME_JAC, C_FRAME_TWIST
+    if c[C_TICKS] % SLOW_EVERY == 0:
+        mass_inv = arm[MASS_INV : MASS_INV + ARM_DOF * ARM_DOF].reshape(ARM_DOF, ARM_DOF)
+        jacobian = f[jac : jac + 6 * ARM_DOF].reshape(6, ARM_DOF)
+        cartesian_refresh(mass_inv, jacobian, f[rot : rot + 9].reshape(3, 3), c)
+    c[C_TICKS] += 1
+    e, sc = C_ERRORS, C_SCRATCH  # errors: rows position, linear and angular velocity
+    r_set, turn, error, normed, wrench, world = sc, sc + 9, sc + 18, sc + 27, sc + 36, sc + 42
+    if moving:
+        for i in range(3):
+            c[e + i] = c[C_P0 + i] + s * c[C_DP + i] - f[pos + i]
+        for i in range(6):
+            c[e + 3 + i] = c[C_TWSET + i] - f[twist + i]
+        exp3(s * c[C_DR], s * c[C_DR + 1], s * c[C_DR + 2], c[turn : turn + 9])
+        for i in range(3):
+            for j in range(3):
+                total = 0.0
+                for m in range(3):
+                    total += c[C_R0 + 3 * i + m] * c[turn + 3 * m + j]
+                c[r_set + 3 * i + j] = total
+    else:
+        for i in range(3):
+            c[e + i] = c[C_PGOAL + i] - f[pos + i]
+        for i in range(6):
+            c[e + 3 + i] = -f[twist + i]
+        for i in range(9):
+            c[r_set + i] = c[C_RGOAL + i]
+    for i in range(3):
+        for j in range(3):
+            total = 0.0  # row i of the errors in task axes: Rᵀ errors[i]
+            for m in range(3):
+                total += c[e + 3 * i + m] * f[rot + 3 * m + j]
+            c[C_LOCAL + 3 * i + j] = total
+            total = 0.0  # Rᵀ R_set
+            for m in range(3):
+                total += f[rot + 3 * m + i] * c[r_set + 3 * m + j]
+            c[error + 3 * i + j] = total
+    log3(c[error : error + 9], c[C_EROT : C_EROT + 3], c[normed : normed + 9])
+    for i in range(3):  # K e + D ė in task axes, force then torque
+        c[wrench + i] = c[C_K + i] * c[C_LOCAL + i] + c[C_D + i] * c[C_LOCAL + 3 + i]
+        c[wrench + 3 + i] = c[C_K + 3 + i] * c[C_EROT + i] + c[C_D + 3 + i] * c[C_LOCAL + 6 + i]
+    for b in range(2):  # back to world axes, per 3-block
+        for i in range(3):
+            total = 0.0
+            for m in range(3):
+                total += c[wrench + 3 * b + m] * f[rot + 3 * i + m]
+            c[world + 3 * b + i] = total
+    for j in range(ARM_DOF):
+        total = 0.0
+        for i in range(6):
+            total += f[jac + ARM_DOF * i + j] * c[world + i]
+        posture = 0.0
+        for m in range(2 * NV):
+            posture += c[C_NS_STATE + 2 * NV * j + m] * arm[STATE + m]
+        arm[TAU + j] = total + arm[BIAS + j] + c[C_NS_POSTURE + j] + posture
+
+
+@njit(**_JIT)
+def joint_torque(arm: np.ndarray, c: np.ndarray) -> None:
+    """One tick of joint impedance (see adapters.control.JointImpedance) into the arm state's
+    TAU, with the damping ``2 ζ sqrt(K M_ii)`` of the current mass matrix."""
+    duration, elapsed = c[J_DURATION], c[J_ELAPSED]
+    s = 1.0 if duration <= 0 else min(elapsed / duration, 1.0)
+    c[J_ELAPSED] = elapsed + DT
+    for j in range(ARM_DOF):
+        v_set = c[J_VSET + j] if s < 1.0 else 0.0
+        error = c[J_Q0 + j] + s * c[J_DQ + j] - arm[STATE + j]
+        damping = 2.0 * c[J_RATIO + j] * math.sqrt(c[J_K + j] * arm[MASS_DIAG + j])
+        arm[TAU + j] = c[J_K + j] * error + damping * (v_set - arm[STATE + NV + j]) + arm[BIAS + j]
+
+
+@njit(**_JIT)
+def sense(arm: np.ndarray, s: np.ndarray) -> None:
+    """Wrist sensing (adapters.sensing) of the raw reading in ``s``, then the peak force and
+    the TCP's turn about its own z since command start (unwrapped)."""
+    com, r = S_LOAD_COM, FT_ROT  # the load's lever: ft rotation @ centre of mass
+    lx = arm[r] * s[com] + arm[r + 1] * s[com + 1] + arm[r + 2] * s[com + 2]
+    ly = arm[r + 3] * s[com] + arm[r + 4] * s[com + 1] + arm[r + 5] * s[com + 2]
+    lz = arm[r + 6] * s[com] + arm[r + 7] * s[com + 1] + arm[r + 8] * s[com + 2]
+    wx, wy, wz = s[S_WEIGHT], s[S_WEIGHT + 1], s[S_WEIGHT + 2]
+    fx = -s[S_RAW] - s[S_OFFSET] - wx
+    fy = -s[S_RAW + 1] - s[S_OFFSET + 1] - wy
+    fz = -s[S_RAW + 2] - s[S_OFFSET + 2] - wz
+    tx = -s[S_RAW + 3] - s[S_OFFSET + 3] - (ly * wz - lz * wy)
+    ty = -s[S_RAW + 4] - s[S_OFFSET + 4] - (lz * wx - lx * wz)
+    tz = -s[S_RAW + 5] - s[S_OFFSET + 5] - (lx * wy - ly * wx)
+    dx, dy, dz = (
+        arm[FT_POS] - arm[POS],
+        arm[FT_POS + 1] - arm[POS + 1],
+        arm[FT_POS + 2] - arm[POS + 2],
+    )
+    tx += dy * fz - dz * fy
+    ty += dz * fx - dx * fz
+    tz += dx * fy - dy * fx
+    a = s[S_ALPHA]
+    new = (fx, fy, fz, tx, ty, tz)
+    for i in range(6):
+        s[S_VALUES + i] = s[S_VALUES + i] + (new[i] - s[S_VALUES + i]) * a
+    vx, vy, vz = s[S_VALUES], s[S_VALUES + 1], s[S_VALUES + 2]
+    s[S_PEAK] = max(s[S_PEAK], math.sqrt(vx * vx + vy * vy + vz * vz))
+    c0, c1, c2 = arm[ROT], arm[ROT + 3], arm[ROT + 6]
+    cos = c0 * s[S_R0] + c1 * s[S_R0 + 3] + c2 * s[S_R0 + 6]  # first column of R₀ᵀ R
+    sin = c0 * s[S_R0 + 1] + c1 * s[S_R0 + 4] + c2 * s[S_R0 + 7]
+    yaw = math.atan2(sin, cos)
+    s[S_TURNED] += (yaw - s[S_YAW] + math.pi) % (2 * math.pi) - math.pi
+    s[S_YAW] = yaw
+
+
+@njit(**_JIT)
+def mujoco_sense(
+    mj: np.ndarray,
+    scratch: np.ndarray,
+    index: np.ndarray,
+    arm: np.ndarray,
+    wrist: bool,
+    slow: bool,
+) -> None:
+    """The arm state from MuJoCo's data after a step, with MuJoCo's ``mj_jacSite`` of the TCP
+    (into ``scratch``, 6 x nv) and, when ``slow``, ``mj_fullM`` (into ``scratch`` after the
+    Jacobians, nv x nv) for the mass terms; with ``wrist``, the raw wrist reading (see
+    ``mujoco_actuate``) and ``sense``. MuJoCo's functions are called at their addresses in
+    ``index``: one native call for all, where each call through the Python bindings costs
+    ~0.5 µs. Neither can fail for valid ids (no allocation, no MuJoCo error)."""
+    qpos, qvel, bias, va = index[M_QPOS], index[M_QVEL], index[M_BIAS], index[M_VADR]
+    model, data = index[M_MODEL], index[M_DATA]
+    nv = index[M_NV]
+    jacobians = scratch[: 6 * nv].reshape(6, nv)
+    at = scratch.ctypes.data
+    _c_call(index[M_JAC_SITE], (model, data, at, at + 8 * 3 * nv, index[M_TCP]))
+    if slow:
+        _c_call(index[M_FULL_M], (model, data, at + 8 * 6 * nv))
+        take_mass(arm, scratch[6 * nv :].reshape(nv, nv), va, False)
+    for j in range(NV):
+        arm[STATE + j] = mj[qpos + j]
+        arm[STATE + NV + j] = mj[qvel + j]
+    for i in range(3):
+        arm[POS + i] = mj[index[M_TCP_XPOS] + i]
+        arm[FT_POS + i] = mj[index[M_FT_XPOS] + i]
+    for i in range(9):
+        arm[ROT + i] = mj[index[M_TCP_XMAT] + i]
+        arm[FT_ROT + i] = mj[index[M_FT_XMAT] + i]
+    for j in range(ARM_DOF):
+        arm[BIAS + j] = mj[bias + j]
+    for i in range(6):
+        total = 0.0
+        for j in range(NV):
+            total += jacobians[i, va + j] * arm[STATE + NV + j]
+        arm[TWIST + i] = total
+        for j in range(ARM_DOF):
+            arm[JAC + i * ARM_DOF + j] = jacobians[i, va + j]
+    if not wrist:
+        return
+    s, force = arm[SENSING:], index[M_FORCE]  # the wrist sensors (site frame) into world axes
+    for b in range(2):
+        for i in range(3):
+            total = 0.0
+            for m in range(3):
+                total += mj[force + 3 * b + m] * s[S_SENSOR_ROT + 3 * i + m]
+            s[S_RAW + 3 * b + i] = total
+    sense(arm, s)
+
+
+@njit(**_JIT)
+def pinocchio_sense(
+    arm: np.ndarray,
+    tcp_rotation: np.ndarray,
+    tcp_position: np.ndarray,
+    ft_rotation: np.ndarray,
+    ft_position: np.ndarray,
+    jacobian: np.ndarray,
+    nle: np.ndarray,
+    mass: np.ndarray,
+    wrist: bool,
+    slow: bool,
+) -> None:
+    """The arm state from Pinocchio's results (placements, the TCP's LOCAL_WORLD_ALIGNED
+    Jacobian, 6 x NV, the nonlinear effects, and when ``slow`` the mass matrix of ``crba``,
+    upper triangle), then with ``wrist`` the wrist sensing."""
+    if slow:
+        take_mass(arm, mass, 0, True)
+    for i in range(3):
+        arm[POS + i] = tcp_position[i]
+        arm[FT_POS + i] = ft_position[i]
+        for j in range(3):
+            arm[ROT + 3 * i + j] = tcp_rotation[i, j]
+            arm[FT_ROT + 3 * i + j] = ft_rotation[i, j]
+    for j in range(ARM_DOF):
+        arm[BIAS + j] = nle[j]
+    for i in range(6):
+        total = 0.0
+        for j in range(NV):
+            total += jacobian[i, j] * arm[STATE + NV + j]
+        arm[TWIST + i] = total
+        for j in range(ARM_DOF):
+            arm[JAC + i * ARM_DOF + j] = jacobian[i, j]
+    if wrist:
+        sense(arm, arm[SENSING:])
+
+
+@njit(**_JIT)
+def twin_forces(
+    arm: np.ndarray,
+    twin: np.ndarray,
+    hand_position: np.ndarray,
+    reach: np.ndarray,
+    near: np.ndarray,
+) -> int:
+    """Start of a twin step: generalized forces ``−damping q̇ + τ`` and no contact yet; flags
+    the static boxes whose reach (rows: x, y, z low, then high) holds the hand origin in
+    ``near`` and returns how many."""
+    for j in range(NV):
+        twin[T_GENERALIZED + j] = twin[T_DAMPING + j] * arm[STATE + NV + j]
+    for j in range(ARM_DOF):
+        twin[T_GENERALIZED + j] += arm[TAU + j]
+    for i in range(6):
+        twin[T_CONTACT + i] = 0.0
+    x, y, z = hand_position[0], hand_position[1], hand_position[2]
+    count = 0
+    for b in range(reach.shape[0]):
+        box = reach[b]
+        inside = box[0] < x < box[3] and box[1] < y < box[4] and box[2] < z < box[5]
+        near[b] = inside
+        count += inside
+    return count
+
+
+@njit(**_JIT)
+def twin_integrate(
+    arm: np.ndarray,
+    twin: np.ndarray,
+    acceleration: np.ndarray,
+    ft_rotation: np.ndarray,
+    finger_speed: float,
+    grasp: float,
+    left_blocked: bool,
+    right_blocked: bool,
+) -> None:
+    """End of a twin step: semi-implicit Euler of the arm joints, the first-order fingers
+    (``finger_speed`` = grip force / finger damping; a blocked finger does not close), and
+    ``twin_wrist`` (ft pose of the step's start)."""
+    for j in range(ARM_DOF):
+        arm[STATE + NV + j] += DT * acceleration[j]
+        arm[STATE + j] += DT * arm[STATE + NV + j]
+    left, right = finger_push(finger_speed, arm[STATE + ARM_DOF], arm[STATE + ARM_DOF + 1], grasp)
+    if left_blocked and left < 0:
+        left = 0.0
+    if right_blocked and right < 0:
+        right = 0.0
+    arm[STATE + NV + ARM_DOF], arm[STATE + NV + ARM_DOF + 1] = left, right
+    arm[STATE + ARM_DOF] += DT * left
+    arm[STATE + ARM_DOF + 1] += DT * right
+    twin_wrist(arm, twin, ft_rotation)
+
+
+@njit(**_JIT)
+def twin_wrist(arm: np.ndarray, twin: np.ndarray, ft_rotation: np.ndarray) -> None:
+    """The twin's quasi-static wrist reading into the arm state's sensing: what link7 must
+    exert to hold the load against the contacts."""
+    s = arm[SENSING:]
+    com = twin[T_LOAD_COM : T_LOAD_COM + 3]
+    lx = ft_rotation[0, 0] * com[0] + ft_rotation[0, 1] * com[1] + ft_rotation[0, 2] * com[2]
+    ly = ft_rotation[1, 0] * com[0] + ft_rotation[1, 1] * com[1] + ft_rotation[1, 2] * com[2]
+    lz = ft_rotation[2, 0] * com[0] + ft_rotation[2, 1] * com[1] + ft_rotation[2, 2] * com[2]
+    wx, wy, wz = twin[T_LOAD], twin[T_LOAD + 1], twin[T_LOAD + 2]
+    c = twin[T_CONTACT : T_CONTACT + 6]
+    s[S_RAW] = -c[0] - wx
+    s[S_RAW + 1] = -c[1] - wy
+    s[S_RAW + 2] = -c[2] - wz
+    s[S_RAW + 3] = -c[3] - (ly * wz - lz * wy)
+    s[S_RAW + 4] = -c[4] - (lz * wx - lx * wz)
+    s[S_RAW + 5] = -c[5] - (lx * wy - ly * wx)
+
+
+def warm_up() -> None:
+    """Compile (or load from the cache) every kernel now, on scratch buffers, so that the
+    first command does not pay for it inside its control loop."""
+    arm, cartesian = np.zeros(ARM_SIZE), np.zeros(CARTESIAN_SIZE)
+    cartesian_torque(arm, cartesian)
+    joint_torque(arm, np.zeros(JOINT_SIZE))
+    mj, index = np.zeros(4 * NV), np.zeros(M_SIZE, dtype=np.int64)
+    mujoco_actuate(mj, arm, 1.0, index)
+    rotation, position = np.asfortranarray(np.eye(3)), np.zeros(3)  # Pinocchio's are Fortran
+    jacobian, mass = np.asfortranarray(np.zeros((6, NV))), np.asfortranarray(np.eye(NV))
+    joints = np.zeros(NV)
+    pinocchio_sense(arm, rotation, position, rotation, position, jacobian, joints, mass, True, True)
+    twin = np.zeros(TWIN_SIZE)
+    twin_forces(arm, twin, position, np.zeros((1, 6)), np.zeros(1, dtype=np.bool_))
+    twin_integrate(arm, twin, np.zeros(ARM_DOF), rotation, 0.1, 0.0, False, False)
+    twin_wrist(arm, twin, rotation)
+
+
+def warm_up_mujoco(mj: np.ndarray, scratch: np.ndarray, index: np.ndarray) -> None:
+    """Compile (or load) ``mujoco_sense``, which calls MuJoCo: on a plant's real arguments,
+    whose arm state it leaves alone (a scratch arm buffer)."""
+    mujoco_sense(mj, scratch, index, np.zeros(ARM_SIZE), True, True)
