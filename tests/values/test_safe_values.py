@@ -92,7 +92,7 @@ def _statechart(expression: str) -> str:
 
 @pytest.mark.parametrize(
     ("expression", "column"),
-    [("(" * 53 + "1" + ")" * 53, 66), (" + ".join(["1"] * 492), None)],
+    [("(" * 120 + "1" + ")" * 120, 133), (" + ".join(["1"] * 492), None)],
     ids=["parentheses", "sum"],
 )
 def test_deep_nesting_is_a_finding(
@@ -109,6 +109,15 @@ def test_deep_nesting_is_a_finding(
     assert "LR0001: nested too deeply" in out
     assert "Deep.lr:5:" + (f"{column}:" if column else "") in out
     assert "1 error(s)" in out
+
+
+def test_nesting_within_the_limit_is_no_finding(tmp_path: Path) -> None:
+    """Eighty brackets stay within the depth the later passes can walk: the parser reads
+    them too, and the model checks clean."""
+    (tmp_path / "p").mkdir()
+    expression = "(" * 80 + "1" + ")" * 80
+    (tmp_path / "p" / "Deep.lr").write_text(_statechart(expression), encoding="utf-8")
+    assert main(["check", str(tmp_path)]) == 0
 
 
 @pytest.mark.parametrize(
