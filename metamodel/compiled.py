@@ -66,9 +66,8 @@ def compile_parser(parser: Parser) -> Callable[[str], NonTerminal | None] | None
 
 def _compilable(parser: Parser) -> bool:
     """Whether every expression and every parser setting is one this module reproduces."""
-    if parser.memoization or parser.reduce_tree or parser.ignore_case or parser.debug:
-        return False
-    if parser.eolterm:
+    settings = (parser.memoization, parser.reduce_tree, parser.ignore_case, parser.eolterm)
+    if any(settings) or parser.debug:
         return False
     seen: set[int] = set()
     pending: list[ParsingExpression] = [parser.parser_model]
