@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from conftest import SCREW_IN, SCREW_TASK, generate
+from generation import SCREW_IN, SCREW_TASK, generate
 from pyecore.resources import URI, ResourceSet
 
 from lightrocks.metamodel.ecore import NS_URI

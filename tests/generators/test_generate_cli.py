@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 
 import pytest
-from conftest import EXAMPLES, SCREW_IN, SCREW_TASK
+from generation import EXAMPLES, SCREW_IN, SCREW_TASK
 
 from lightrocks.workbench import files
 from lightrocks.workbench.app.cli import main

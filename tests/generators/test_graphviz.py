@@ -6,7 +6,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from conftest import EXAMPLES, SCREW_IN, SCREW_TASK, assert_golden, generate
+from generation import EXAMPLES, SCREW_IN, SCREW_TASK, assert_golden, generate
 
 import lightrocks.generators.graphviz.rendering as rendering
 from lightrocks.generators.graphviz.graph import quote

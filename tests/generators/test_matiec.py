@@ -12,7 +12,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
-from conftest import EXAMPLES, generate
+from generation import EXAMPLES, generate
 from plc import (
     Scenario,
     comparable,

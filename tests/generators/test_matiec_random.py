@@ -15,7 +15,7 @@ import random
 from pathlib import Path
 
 import pytest
-from conftest import generate
+from generation import generate
 from plc import Scenario, comparable, driver_source, gcc, iec2c, python_trace, sfc_trace, streams
 from statecharts.random_charts import TICK, random_chart
 from statecharts.sismic_chart import python

@@ -15,7 +15,7 @@ import tarfile
 from pathlib import Path
 
 import pytest
-from conftest import RAIL_TASK, SCREW_TASK, generate
+from generation import RAIL_TASK, SCREW_TASK, generate
 from lxml import etree
 
 from lightrocks.workbench.generators import GenerationError

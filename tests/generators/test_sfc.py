@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import RAIL_TASK, SCREW_IN, SCREW_TASK, assert_golden, generate
+from generation import RAIL_TASK, SCREW_IN, SCREW_TASK, assert_golden, generate
 from hypothesis import given
 from hypothesis import strategies as st
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import generate
+from generation import generate
 
 from lightrocks.workbench.app.cli import main
 

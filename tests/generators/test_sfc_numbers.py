@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import generate
+from generation import generate
 
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import GenerationError, GenerationRequest, load_generator

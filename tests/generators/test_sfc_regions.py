@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import EXAMPLES, generate
+from generation import EXAMPLES, generate
 
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.workbench.generators import GenerationError
