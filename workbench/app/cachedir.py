@@ -26,13 +26,18 @@ def cache_root() -> Path:
 
 
 def put_json(target: Path, data: Any) -> None:
-    """Write ``data`` as the entry ``target`` in a private folder: staged in a temporary file
+    """Write ``data`` as the JSON entry ``target`` (see ``put_text``)."""
+    put_text(target, json.dumps(data, separators=(",", ":")))  # C encoder: json.dump has none
+
+
+def put_text(target: Path, text: str) -> None:
+    """Write ``text`` as the entry ``target`` in a private folder: staged in a temporary file
     and renamed into place, so readers never see half an entry."""
     target.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
     handle, staged = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")
     try:
         with os.fdopen(handle, "w", encoding="utf-8") as file:
-            file.write(json.dumps(data, separators=(",", ":")))  # C encoder: json.dump has none
+            file.write(text)
         os.replace(staged, target)
     except BaseException:
         Path(staged).unlink(missing_ok=True)
