@@ -25,7 +25,7 @@ class MujocoArm(ArmState):
         self, model: mujoco.MjModel, data: mujoco.MjData, mj: np.ndarray, index: np.ndarray
     ) -> None:
         super().__init__()
-        self._model, self._data, self._mj, self._index = model, data, mj, index
+        self._mj, self._index = mj, index
         self._scratch = np.zeros(6 * model.nv + model.nv * model.nv)
         """Room for MuJoCo's TCP Jacobians and full mass matrix."""
         k.warm_up_mujoco(mj, self._scratch, index)
@@ -38,6 +38,5 @@ class MujocoArm(ArmState):
 
     def _read(self, wrist: bool) -> None:
         """One native call: the arm state, then with ``wrist`` the wrist sensing."""
-        self._tick += 1
-        slow = self._tick % k.SLOW_EVERY == 1
+        slow = self._slow_tick()
         k.mujoco_sense(self._mj, self._scratch, self._index, self.buffer, wrist, slow)
