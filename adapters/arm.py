@@ -15,7 +15,6 @@ import numpy as np
 import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
-from lightrocks.adapters.kernels import SLOW_EVERY
 from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
 
 
@@ -58,7 +57,6 @@ class ArmState(ABC):
         self.sensing = buffer[k.SENSING :]
         self.raw = self.sensing[k.S_RAW : k.S_RAW + 6]
         """The raw wrist reading, which the plant writes after each step."""
-        self._tick = 0
 
     @property
     def point(self) -> tuple[float, float, float]:
@@ -80,20 +78,18 @@ class ArmState(ABC):
         """Take the plant's state of this tick, then the wrist sensing of ``raw``
         (adapters.kernels.sense), in one native call."""
 
-    def _slow_tick(self) -> bool:
-        """Whether this tick refreshes the mass matrix; counts the tick."""
-        self._tick += 1
-        return self._tick % SLOW_EVERY == 1
-
 
 class PinocchioArm(ArmState):
-    """Computes the arm state with Pinocchio: one ``computeJointJacobians`` (which includes
-    the forward kinematics) serves the TCP and ft placements and the TCP Jacobian; one native
-    call copies Pinocchio's results (read through views of its data made once) and does the
-    wrist sensing.
+    """Computes the arm state with Pinocchio: ``compute`` runs ``crba`` in the world convention
+    (whose by-products are the joint placements and the joint Jacobians, as
+    ``computeJointJacobians`` gives them) and ``nonLinearEffects`` at ``q``, ``v``;
+    ``update``/``sense`` read the results in place in one native call (``index`` holds the
+    addresses of Pinocchio's arrays, ``frames`` the TCP and ft placements in their joint), which
+    derives the TCP and ft placements and the TCP Jacobian and does the wrist sensing.
 
-    The joint state is ``q``/``v`` of this arm state, which the twin's plant integrates in
-    place; given ``q`` and ``v`` arrays of another owner, each update copies them first.
+    Whoever changes ``q`` and ``v`` calls ``compute`` before the next read: the twin's plant
+    after each step, which reads the mass matrix and nonlinear effects too. Given ``q`` and ``v``
+    arrays of another owner, ``compute`` copies them first.
     """
 
     def __init__(
@@ -103,30 +99,47 @@ class PinocchioArm(ArmState):
         self.model = model
         self.data = data = model.createData()
         self._joints = None if q is None or v is None else (q, v)
-        self._tcp_id = model.getFrameId(TCP_SITE)
-        self._ft_id = model.getFrameId(FT_SITE)
-        tcp, ft = data.oMf[self._tcp_id], data.oMf[self._ft_id]
-        self._results = (tcp.rotation, tcp.translation, ft.rotation, ft.translation)
-        """Views into ``data`` that every update rewrites."""
-        self._nle, self._mass = data.nle, data.M
+        self.joint = carrier(model, (TCP_SITE, FT_SITE))
+        """The joint that carries the TCP and the ft site."""
+        self.frames = np.concatenate([in_joint(model, name) for name in (TCP_SITE, FT_SITE)])
+        placement = data.oMi[self.joint]
+        arrays = (data.J, data.nle, data.M, placement.rotation, placement.translation)
+        if not all(a.flags.f_contiguous and a.dtype == np.float64 for a in arrays):
+            raise ValueError("Pinocchio's data arrays are not column-major float64")
+        self.index = np.array([a.ctypes.data for a in arrays], dtype=np.int64)
+        """Addresses of Pinocchio's arrays (P_* in adapters.kernels): Eigen allocates them once
+        with ``data``, which this arm state keeps."""
+
+    def compute(self) -> None:
+        """Pinocchio's kinematics, Jacobians, nonlinear effects and mass matrix at ``q``,
+        ``v``."""
+        model, data, q = self.model, self.data, self.q
+        if self._joints is not None:
+            q[:], self.v[:] = self._joints
+        pin.crba(model, data, q, pin.Convention.WORLD)
+        pin.nonLinearEffects(model, data, q, self.v)
 
     def update(self) -> None:
-        self._read(False)
+        k.pinocchio_sense(self.buffer, self.index, self.frames, False)
 
     def sense(self) -> None:
-        self._read(True)
+        k.pinocchio_sense(self.buffer, self.index, self.frames, True)
 
-    def _read(self, wrist: bool) -> None:
-        model, data, q, v = self.model, self.data, self.q, self.v
-        if self._joints is not None:
-            q[:], v[:] = self._joints
-        pin.computeJointJacobians(model, data, q)
-        pin.updateFramePlacement(model, data, self._tcp_id)
-        pin.updateFramePlacement(model, data, self._ft_id)
-        jacobian = pin.getFrameJacobian(model, data, self._tcp_id, pin.LOCAL_WORLD_ALIGNED)
-        pin.nonLinearEffects(model, data, q, v)
-        slow = self._slow_tick()
-        if slow:
-            pin.crba(model, data, q)  # the upper triangle of data.M
-        results, nle, mass = self._results, self._nle, self._mass
-        k.pinocchio_sense(self.buffer, *results, jacobian, nle, mass, wrist, slow)
+
+def carrier(model: pin.Model, frames: tuple[str, ...]) -> int:
+    """The joint that carries all the named frames, which the arm joints (the first ARM_DOF
+    velocities) move: the native reads take their placements and the TCP Jacobian from it."""
+    joints = {model.frames[model.getFrameId(name)].parentJoint for name in frames}
+    if len(joints) != 1:
+        raise ValueError(f"frames {', '.join(frames)} are not on one joint")
+    joint = joints.pop()
+    moved_by = [model.joints[j].idx_v for j in model.supports[joint].tolist()[1:]]
+    if moved_by != list(range(ARM_DOF)):
+        raise ValueError(f"frames {', '.join(frames)} are not moved by the arm joints alone")
+    return joint
+
+
+def in_joint(model: pin.Model, frame: str) -> np.ndarray:
+    """A frame's placement in its joint: rotation (row-major), then translation."""
+    placement = model.frames[model.getFrameId(frame)].placement
+    return np.concatenate([placement.rotation.reshape(-1), placement.translation])

@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 from llvmlite import ir
-from numba import njit, types
+from numba import carray, farray, njit, types
 from numba.extending import intrinsic
 
 from lightrocks.adapters import robot_model
@@ -73,7 +73,10 @@ MASS_DIAG = MASS_INV + ARM_DOF * ARM_DOF
 """Diagonal of the arm block of the mass matrix, refreshed with MASS_INV."""
 TAU = MASS_DIAG + ARM_DOF
 """The controller's arm torques for the next step."""
-SENSING = TAU + ARM_DOF
+TICKS = TAU + ARM_DOF
+"""Reads of the plant's state so far: the mass terms are refreshed on every SLOW_EVERY-th,
+starting with the first."""
+SENSING = TICKS + 1
 """Start of the sensing block (offsets S_* below, relative to it)."""
 
 # -- the Cartesian impedance buffer (adapters.control.CartesianImpedance) -------------------------
@@ -166,7 +169,31 @@ T_CONTACT = T_LOAD_COM + 3
 """Contact wrench on the hand subtree at the ft site, world axes."""
 T_GENERALIZED = T_CONTACT + 6
 """Generalized forces of the robot joints."""
-TWIN_SIZE = T_GENERALIZED + NV
+T_HAND = T_GENERALIZED + NV
+"""Placement of the hand body in the frames' joint (see P_JOINT_ROT), as F_TCP."""
+T_LOW = T_HAND + 12
+"""Room for a step's Cholesky factor of the arm's mass matrix (ARM_DOF x ARM_DOF), its
+accelerations, and the placement of the hand or the ft site (as F_TCP)."""
+T_ACCELERATION = T_LOW + ARM_DOF * ARM_DOF
+T_PLACEMENT = T_ACCELERATION + ARM_DOF
+T_BOXES = T_PLACEMENT + 12
+"""Per static box: the reach (x, y, z low, then high) the hand origin must enter to touch it,
+then 1.0 when it is in reach at this step."""
+T_BOX = 7
+TWIN_SIZE = T_BOXES
+"""Size of the buffer of a scene without static boxes; each box adds T_BOX."""
+
+# -- Pinocchio's data (adapters.arm.PinocchioArm.index and .frames) -------------------------------
+P_J, P_NLE, P_M, P_JOINT_ROT, P_JOINT_POS = range(5)
+"""``index`` array: the addresses of Pinocchio's ``data.J`` (the joint Jacobians, 6 x NV, world
+frame), ``data.nle``, ``data.M`` (upper triangle), all column-major, and of the rotation
+(column-major) and translation of ``data.oMi`` of the joint that carries the TCP and ft frames
+and the hand body."""
+P_SIZE = P_JOINT_POS + 1
+F_TCP, F_FT = 0, 12
+"""``frames`` array: the placement of the TCP and of the ft site in that joint's frame, each a
+rotation (row-major) and a translation."""
+FRAMES_SIZE = F_FT + 12
 
 # -- offsets into MuJoCo's data (adapters.mujoco.data_view) for the mujoco_* functions -----------
 M_QPOS, M_QVEL, M_TCP_XPOS, M_TCP_XMAT, M_FT_XPOS, M_FT_XMAT, M_BIAS, M_CTRL, M_FORCE = range(9)
@@ -294,11 +321,10 @@ def log3(r_in: np.ndarray, out: np.ndarray, r: np.ndarray) -> None:
 
 
 @njit(**_JIT)
-def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
-    """Inverse of a symmetric positive definite matrix by its Cholesky factor L:
-    ``a⁻¹ = L⁻ᵀ L⁻¹`` (numba's ``np.linalg.inv`` needs SciPy's LAPACK)."""
+def cholesky(a: np.ndarray, low: np.ndarray) -> None:
+    """The lower Cholesky factor L of a symmetric positive definite matrix ``a`` (its lower
+    triangle is read) into ``low``, whose upper triangle is left alone."""
     n = a.shape[0]
-    low = np.zeros((n, n))
     for j in range(n):
         total = a[j, j]
         for m in range(j):
@@ -309,6 +335,15 @@ def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
             for m in range(j):
                 total -= low[i, m] * low[j, m]
             low[i, j] = total / low[j, j]
+
+
+@njit(**_JIT)
+def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
+    """Inverse of a symmetric positive definite matrix by its Cholesky factor L:
+    ``a⁻¹ = L⁻ᵀ L⁻¹`` (numba's ``np.linalg.inv`` needs SciPy's LAPACK)."""
+    n = a.shape[0]
+    low = np.zeros((n, n))
+    cholesky(a, low)
     inv = np.zeros((n, n))  # L⁻¹, lower triangular
     for j in range(n):
         inv[j, j] = 1.0 / low[j, j]
@@ -323,6 +358,22 @@ def spd_inverse(a: np.ndarray, out: np.ndarray) -> None:
             for m in range(j, n):
                 total += inv[m, i] * inv[m, j]
             out[i, j] = out[j, i] = total
+
+
+@njit(**_JIT)
+def cholesky_solve(low: np.ndarray, b: np.ndarray) -> None:
+    """Solve ``L Lᵀ x = b`` in place of ``b``, with L the lower triangle of ``low``."""
+    n = b.shape[0]
+    for i in range(n):
+        total = b[i]
+        for m in range(i):
+            total -= low[i, m] * b[m]
+        b[i] = total / low[i, i]
+    for i in range(n - 1, -1, -1):
+        total = b[i]
+        for m in range(i + 1, n):
+            total -= low[m, i] * b[m]
+        b[i] = total / low[i, i]
 
 
 @njit(**_JIT)
@@ -359,6 +410,18 @@ def _c_call(typingctx, function, arguments):
         target = builder.inttoptr(args[0], ir.FunctionType(ir.VoidType(), kinds).as_pointer())
         builder.call(target, converted)
         return context.get_dummy_value()
+
+    return signature, codegen
+
+
+@intrinsic
+def _doubles_at(typingctx, address):
+    """A pointer to the float64 values at ``address``, for ``carray``/``farray`` to read another
+    library's arrays in place (Pinocchio's data, whose arrays Eigen allocates once)."""
+    signature = types.CPointer(types.float64)(address)
+
+    def codegen(context, builder, sig, args):
+        return builder.inttoptr(args[0], context.get_value_type(sig.return_type))
 
     return signature, codegen
 
@@ -574,16 +637,23 @@ def sense(arm: np.ndarray, s: np.ndarray) -> None:
 
 
 @njit(**_JIT)
+def slow_tick(arm: np.ndarray) -> bool:
+    """Counts a read of the plant's state; whether it refreshes the mass terms."""
+    ticks = arm[TICKS] + 1.0
+    arm[TICKS] = ticks
+    return ticks % SLOW_EVERY == 1
+
+
+@njit(**_JIT)
 def mujoco_sense(
     mj: np.ndarray,
     scratch: np.ndarray,
     index: np.ndarray,
     arm: np.ndarray,
     wrist: bool,
-    slow: bool,
 ) -> None:
     """The arm state from MuJoCo's data after a step, with MuJoCo's ``mj_jacSite`` of the TCP
-    (into ``scratch``, 6 x nv) and, when ``slow``, ``mj_fullM`` (into ``scratch`` after the
+    (into ``scratch``, 6 x nv) and, on a ``slow_tick``, ``mj_fullM`` (into ``scratch`` after the
     Jacobians, nv x nv) for the mass terms; with ``wrist``, the raw wrist reading (see
     ``mujoco_actuate``) and ``sense``. MuJoCo's functions are called at their addresses in
     ``index``: one native call for all, where each call through the Python bindings costs
@@ -594,7 +664,7 @@ def mujoco_sense(
     jacobians = scratch[: 6 * nv].reshape(6, nv)
     at = scratch.ctypes.data
     _c_call(index[M_JAC_SITE], (model, data, at, at + 8 * 3 * nv, index[M_TCP]))
-    if slow:
+    if slow_tick(arm):
         _c_call(index[M_FULL_M], (model, data, at + 8 * 6 * nv))
         take_mass(arm, scratch[6 * nv :].reshape(nv, nv), va, False)
     for j in range(NV):
@@ -628,83 +698,124 @@ def mujoco_sense(
 
 
 @njit(**_JIT)
-def pinocchio_sense(
-    arm: np.ndarray,
-    tcp_rotation: np.ndarray,
-    tcp_position: np.ndarray,
-    ft_rotation: np.ndarray,
-    ft_position: np.ndarray,
-    jacobian: np.ndarray,
-    nle: np.ndarray,
-    mass: np.ndarray,
-    wrist: bool,
-    slow: bool,
+def _pinocchio(index: np.ndarray, what: int, size: int) -> np.ndarray:
+    """One of Pinocchio's arrays (``index`` offsets P_*) in place, flat, column-major."""
+    return carray(_doubles_at(index[what]), size)
+
+
+@njit(**_JIT)
+def _frame_placement(
+    index: np.ndarray, frames: np.ndarray, f: int, out: np.ndarray, rot: int, pos: int
 ) -> None:
-    """The arm state from Pinocchio's results (placements, the TCP's LOCAL_WORLD_ALIGNED
-    Jacobian, 6 x NV, the nonlinear effects, and when ``slow`` the mass matrix of ``crba``,
-    upper triangle), then with ``wrist`` the wrist sensing."""
-    if slow:
-        take_mass(arm, mass, 0, True)
-    for i in range(3):
-        arm[POS + i] = tcp_position[i]
-        arm[FT_POS + i] = ft_position[i]
-        for j in range(3):
-            arm[ROT + 3 * i + j] = tcp_rotation[i, j]
-            arm[FT_ROT + 3 * i + j] = ft_rotation[i, j]
+    """World placement of a frame (``frames[f:]``, or the twin's T_HAND) on its joint's
+    placement in Pinocchio's data: rotation (row-major) into ``out[rot:]``, translation into
+    ``out[pos:]``."""
+    joint_rot, joint_pos = _pinocchio(index, P_JOINT_ROT, 9), _pinocchio(index, P_JOINT_POS, 3)
+    for r in range(3):
+        total = 0.0
+        for m in range(3):
+            total += joint_rot[r + 3 * m] * frames[f + 9 + m]
+        out[pos + r] = total + joint_pos[r]
+        for c in range(3):
+            total = 0.0
+            for m in range(3):
+                total += joint_rot[r + 3 * m] * frames[f + 3 * m + c]
+            out[rot + 3 * r + c] = total
+
+
+@njit(**_JIT)
+def pinocchio_sense(arm: np.ndarray, index: np.ndarray, frames: np.ndarray, wrist: bool) -> None:
+    """The arm state from Pinocchio's results, read in place (``index``): the TCP and ft
+    placements, the TCP's LOCAL_WORLD_ALIGNED Jacobian from the world-frame joint Jacobians
+    (the arm joints carry the TCP), the nonlinear effects and on a ``slow_tick`` the mass terms;
+    then with ``wrist`` the wrist sensing."""
+    if slow_tick(arm):
+        take_mass(arm, farray(_doubles_at(index[P_M]), (NV, NV)), 0, True)
+    _frame_placement(index, frames, F_TCP, arm, ROT, POS)
+    _frame_placement(index, frames, F_FT, arm, FT_ROT, FT_POS)
+    nle = _pinocchio(index, P_NLE, NV)
     for j in range(ARM_DOF):
         arm[BIAS + j] = nle[j]
+    joints = _pinocchio(index, P_J, 6 * NV)
+    px, py, pz = arm[POS], arm[POS + 1], arm[POS + 2]
+    for c in range(ARM_DOF):  # the velocity of the TCP point: v + ω × p
+        at = 6 * c
+        wx, wy, wz = joints[at + 3], joints[at + 4], joints[at + 5]
+        arm[JAC + c] = joints[at] + wy * pz - wz * py
+        arm[JAC + ARM_DOF + c] = joints[at + 1] + wz * px - wx * pz
+        arm[JAC + 2 * ARM_DOF + c] = joints[at + 2] + wx * py - wy * px
+        arm[JAC + 3 * ARM_DOF + c] = wx
+        arm[JAC + 4 * ARM_DOF + c] = wy
+        arm[JAC + 5 * ARM_DOF + c] = wz
     for i in range(6):
         total = 0.0
-        for j in range(NV):
-            total += jacobian[i, j] * arm[STATE + NV + j]
+        for c in range(ARM_DOF):
+            total += arm[JAC + i * ARM_DOF + c] * arm[STATE + NV + c]
         arm[TWIST + i] = total
-        for j in range(ARM_DOF):
-            arm[JAC + i * ARM_DOF + j] = jacobian[i, j]
     if wrist:
         sense(arm, arm[SENSING:])
 
 
 @njit(**_JIT)
-def twin_forces(
+def twin_step(
     arm: np.ndarray,
     twin: np.ndarray,
-    hand_position: np.ndarray,
-    reach: np.ndarray,
-    near: np.ndarray,
-) -> int:
-    """Start of a twin step: generalized forces ``−damping q̇ + τ`` and no contact yet; flags
-    the static boxes whose reach (rows: x, y, z low, then high) holds the hand origin in
-    ``near`` and returns how many."""
+    index: np.ndarray,
+    frames: np.ndarray,
+    finger_speed: float,
+    grasp: float,
+    alone: bool,
+) -> bool:
+    """A twin step as far as native code goes: generalized forces ``−damping q̇ + τ``, no
+    contact yet, and the static boxes whose reach holds the hand origin flagged. With none and
+    the arm ``alone`` (no fixture twin to step), the whole step (``twin_integrate``); returns
+    whether it did so, else the caller adds the interactions and integrates."""
     for j in range(NV):
         twin[T_GENERALIZED + j] = twin[T_DAMPING + j] * arm[STATE + NV + j]
     for j in range(ARM_DOF):
         twin[T_GENERALIZED + j] += arm[TAU + j]
     for i in range(6):
         twin[T_CONTACT + i] = 0.0
-    x, y, z = hand_position[0], hand_position[1], hand_position[2]
-    count = 0
-    for b in range(reach.shape[0]):
-        box = reach[b]
-        inside = box[0] < x < box[3] and box[1] < y < box[4] and box[2] < z < box[5]
-        near[b] = inside
-        count += inside
-    return count
+    _frame_placement(index, twin, T_HAND, twin, T_PLACEMENT, T_PLACEMENT + 9)
+    x, y, z = twin[T_PLACEMENT + 9], twin[T_PLACEMENT + 10], twin[T_PLACEMENT + 11]
+    near = False
+    for b in range(T_BOXES, twin.shape[0], T_BOX):
+        inside = twin[b] < x < twin[b + 3] and twin[b + 1] < y < twin[b + 4]
+        inside = inside and twin[b + 2] < z < twin[b + 5]
+        twin[b + 6] = 1.0 if inside else 0.0
+        near = near or inside
+    if near or not alone:
+        return False
+    twin_integrate(arm, twin, index, frames, finger_speed, grasp, False, False)
+    return True
 
 
 @njit(**_JIT)
 def twin_integrate(
     arm: np.ndarray,
     twin: np.ndarray,
-    acceleration: np.ndarray,
-    ft_rotation: np.ndarray,
+    index: np.ndarray,
+    frames: np.ndarray,
     finger_speed: float,
     grasp: float,
     left_blocked: bool,
     right_blocked: bool,
 ) -> None:
-    """End of a twin step: semi-implicit Euler of the arm joints, the first-order fingers
-    (``finger_speed`` = grip force / finger damping; a blocked finger does not close), and
-    ``twin_wrist`` (ft pose of the step's start)."""
+    """End of a twin step: the arm's accelerations from ``M a = forces − h`` (the arm block of
+    Pinocchio's mass matrix and its nonlinear effects, of the step's start), semi-implicit Euler
+    of the arm joints, the first-order fingers (``finger_speed`` = grip force / finger damping;
+    a blocked finger does not close), and ``twin_wrist`` (ft pose of the step's start)."""
+    mass = _pinocchio(index, P_M, NV * NV)
+    nle = _pinocchio(index, P_NLE, NV)
+    low = twin[T_LOW:T_ACCELERATION].reshape(ARM_DOF, ARM_DOF)
+    for i in range(ARM_DOF):  # the lower triangle, from Pinocchio's upper one
+        for j in range(i + 1):
+            low[i, j] = mass[j + NV * i]
+    cholesky(low, low)
+    acceleration = twin[T_ACCELERATION:T_PLACEMENT]
+    for j in range(ARM_DOF):
+        acceleration[j] = twin[T_GENERALIZED + j] - nle[j]
+    cholesky_solve(low, acceleration)
     for j in range(ARM_DOF):
         arm[STATE + NV + j] += DT * acceleration[j]
         arm[STATE + j] += DT * arm[STATE + NV + j]
@@ -716,18 +827,20 @@ def twin_integrate(
     arm[STATE + NV + ARM_DOF], arm[STATE + NV + ARM_DOF + 1] = left, right
     arm[STATE + ARM_DOF] += DT * left
     arm[STATE + ARM_DOF + 1] += DT * right
-    twin_wrist(arm, twin, ft_rotation)
+    twin_wrist(arm, twin, index, frames)
 
 
 @njit(**_JIT)
-def twin_wrist(arm: np.ndarray, twin: np.ndarray, ft_rotation: np.ndarray) -> None:
+def twin_wrist(arm: np.ndarray, twin: np.ndarray, index: np.ndarray, frames: np.ndarray) -> None:
     """The twin's quasi-static wrist reading into the arm state's sensing: what link7 must
-    exert to hold the load against the contacts."""
+    exert to hold the load against the contacts, at the ft pose in Pinocchio's data."""
     s = arm[SENSING:]
+    _frame_placement(index, frames, F_FT, twin, T_PLACEMENT, T_PLACEMENT + 9)
+    ft = twin[T_PLACEMENT : T_PLACEMENT + 9]
     com = twin[T_LOAD_COM : T_LOAD_COM + 3]
-    lx = ft_rotation[0, 0] * com[0] + ft_rotation[0, 1] * com[1] + ft_rotation[0, 2] * com[2]
-    ly = ft_rotation[1, 0] * com[0] + ft_rotation[1, 1] * com[1] + ft_rotation[1, 2] * com[2]
-    lz = ft_rotation[2, 0] * com[0] + ft_rotation[2, 1] * com[1] + ft_rotation[2, 2] * com[2]
+    lx = ft[0] * com[0] + ft[1] * com[1] + ft[2] * com[2]
+    ly = ft[3] * com[0] + ft[4] * com[1] + ft[5] * com[2]
+    lz = ft[6] * com[0] + ft[7] * com[1] + ft[8] * com[2]
     wx, wy, wz = twin[T_LOAD], twin[T_LOAD + 1], twin[T_LOAD + 2]
     c = twin[T_CONTACT : T_CONTACT + 6]
     s[S_RAW] = -c[0] - wx
@@ -746,17 +859,17 @@ def warm_up() -> None:
     joint_torque(arm, np.zeros(JOINT_SIZE))
     mj, index = np.zeros(4 * NV), np.zeros(M_SIZE, dtype=np.int64)
     mujoco_actuate(mj, arm, 1.0, index)
-    rotation, position = np.asfortranarray(np.eye(3)), np.zeros(3)  # Pinocchio's are Fortran
-    jacobian, mass = np.asfortranarray(np.zeros((6, NV))), np.asfortranarray(np.eye(NV))
-    joints = np.zeros(NV)
-    pinocchio_sense(arm, rotation, position, rotation, position, jacobian, joints, mass, True, True)
-    twin = np.zeros(TWIN_SIZE)
-    twin_forces(arm, twin, position, np.zeros((1, 6)), np.zeros(1, dtype=np.bool_))
-    twin_integrate(arm, twin, np.zeros(ARM_DOF), rotation, 0.1, 0.0, False, False)
-    twin_wrist(arm, twin, rotation)
+    # stand-ins for Pinocchio's data (P_J … P_JOINT_POS), alive while the functions read them
+    stand_ins = (np.zeros(6 * NV), np.zeros(NV), np.eye(NV).reshape(-1), np.eye(3).reshape(-1))
+    stand_ins += (np.zeros(3),)
+    index = np.array([a.ctypes.data for a in stand_ins], dtype=np.int64)
+    frames = np.zeros(FRAMES_SIZE)
+    pinocchio_sense(arm, index, frames, True)
+    twin = np.zeros(TWIN_SIZE + T_BOX)
+    twin_step(arm, twin, index, frames, 0.1, 0.0, True)
 
 
 def warm_up_mujoco(mj: np.ndarray, scratch: np.ndarray, index: np.ndarray) -> None:
     """Compile (or load) ``mujoco_sense``, which calls MuJoCo: on a plant's real arguments,
     whose arm state it leaves alone (a scratch arm buffer)."""
-    mujoco_sense(mj, scratch, index, np.zeros(ARM_SIZE), True, True)
+    mujoco_sense(mj, scratch, index, np.zeros(ARM_SIZE), True)

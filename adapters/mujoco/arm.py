@@ -38,5 +38,4 @@ class MujocoArm(ArmState):
 
     def _read(self, wrist: bool) -> None:
         """One native call: the arm state, then with ``wrist`` the wrist sensing."""
-        slow = self._slow_tick()
-        k.mujoco_sense(self._mj, self._scratch, self._index, self.buffer, wrist, slow)
+        k.mujoco_sense(self._mj, self._scratch, self._index, self.buffer, wrist)

@@ -1,12 +1,12 @@
 """The fast twin: Pinocchio rigid-body dynamics with penalty contacts against static boxes.
 
 The arm is integrated with semi-implicit Euler at 1 kHz from ``M a = τ − h − damping·v + Jᵀf``
-with Pinocchio's ABA on the arm model with the fingers locked (joint damping from the MJCF).
-Both fingers always move symmetrically, so the locked fingers leave gravity exact and change
-the arm inertia by less than 1e-4 kg m². The fingers are a
+(joint damping from the MJCF), with the arm block of the whole robot's mass matrix (Pinocchio's
+CRBA) and its nonlinear effects h (RNEA), the fingers where they are: the very terms the
+controllers read, computed once per step at the state it reached. The fingers are a
 first-order model: they move at the speed the finger damping of the MJCF gives the
-grip force and stop when
-they would press into a box. Contacts are the corners of the hand and finger boxes against
+grip force and stop when they would press into a box; their acceleration does not act on
+the arm. Contacts are the corners of the hand and finger boxes against
 the boxes welded to the world in the scene MJCF (spring-damper normal force, regularised
 Coulomb friction); the arm links, the floor plane and moving scene bodies are not collided.
 The wrist reading is quasi-static: the hand load's weight plus the contact forces.
@@ -25,7 +25,7 @@ import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters import scene_hooks
-from lightrocks.adapters.arm import ArmState, PinocchioArm
+from lightrocks.adapters.arm import PinocchioArm, carrier, in_joint
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -66,51 +66,43 @@ class PinocchioPlant:
         self.data = mujoco.MjData(self.model)
         joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
         self._qadr = np.array([j.qposadr[0] for j in joints])
-        self._twin = np.zeros(k.TWIN_SIZE)
-        """Parameters and per-step forces (layout in adapters.kernels)."""
-        damping = [self.model.dof_damping[j.dofadr[0]] for j in joints]
-        self._twin[k.T_DAMPING : k.T_DAMPING + NV] = -np.array(damping)
-        self._generalized = self._twin[k.T_GENERALIZED : k.T_GENERALIZED + NV]
         self.robot = load_robot()
-        self.robot_data = self.robot.createData()
-        self.arm: ArmState = PinocchioArm(self.robot)
+        self.arm = PinocchioArm(self.robot)
         self.q, self.v = self.arm.q, self.arm.v
         """The joint state is the arm state's, integrated in place."""
         self.q[:ARM_DOF], self.q[ARM_DOF:] = READY_Q, FINGER_TRAVEL
-        fingers = [self.robot.getJointId(name) for name in FINGER_JOINTS]
-        self._arm = pin.buildReducedModel(self.robot, fingers, pin.neutral(self.robot))
-        self._arm_data = self._arm.createData()
-        self._arm_q, self._arm_v = self.q[:ARM_DOF], self.v[:ARM_DOF]
-        self._arm_generalized = self._generalized[:ARM_DOF]
-        """Views made once: a view costs a NumPy call too."""
+        self.robot_data = self.arm.data
+        """Pinocchio's data, shared with the arm state: its ``compute`` serves both."""
+        self.arm.compute()
         self.sync()
-        self._ft_id = self.robot.getFrameId(FT_SITE)
+        self._boxes = self._static_boxes()
+        self._twin = twin = np.zeros(k.TWIN_SIZE + k.T_BOX * len(self._boxes))
+        """Parameters, per-step forces and the static boxes' reach (layout in adapters.kernels)."""
+        damping = [self.model.dof_damping[j.dofadr[0]] for j in joints]
+        twin[k.T_DAMPING : k.T_DAMPING + NV] = -np.array(damping)
+        self._generalized = twin[k.T_GENERALIZED : k.T_GENERALIZED + NV]
         hand = self.model.body(HAND_BODY).id
         load_com = self._in_body(hand, self.data.subtree_com[hand])
-        self._twin[k.T_LOAD : k.T_LOAD + 3] = float(self.model.body_subtreemass[hand]) * GRAVITY
-        self._twin[k.T_LOAD_COM : k.T_LOAD_COM + 3] = load_com
-        self._boxes = self._static_boxes()
-        self._reach = np.array(
-            [
-                (*(c - np.abs(r) @ h - REACH), *(c + np.abs(r) @ h + REACH))
-                for c, r, h in self._boxes
-            ]
-        ).reshape(len(self._boxes), 6)
-        """Per static box, the world-axis box (x, y, z low, then high) around it that the hand
-        origin must enter to touch it."""
-        self._near = np.zeros(len(self._boxes), dtype=np.bool_)
-        """Which boxes the hand is near, per step."""
+        twin[k.T_LOAD : k.T_LOAD + 3] = float(self.model.body_subtreemass[hand]) * GRAVITY
+        twin[k.T_LOAD_COM : k.T_LOAD_COM + 3] = load_com
+        if carrier(self.robot, (TCP_SITE, HAND_BODY)) != self.arm.joint:
+            raise ValueError(f"the hand body {HAND_BODY!r} is not on the TCP's joint")
+        twin[k.T_HAND : k.T_HAND + 12] = in_joint(self.robot, HAND_BODY)
+        reach = twin[k.T_BOXES :].reshape(-1, k.T_BOX)
+        for row, (c, r, h) in zip(reach, self._boxes, strict=True):
+            # the world-axis box (x, y, z low, then high) the hand origin enters to touch it
+            row[:6] = (*(c - np.abs(r) @ h - REACH), *(c + np.abs(r) @ h + REACH))
+        self._near = reach[:, 6]
+        """Which boxes the hand is near, per step (1.0 or 0.0)."""
         self._frames, self._points = self._contact_points()
-        self._hand_position = self.robot_data.oMf[self._frames[0]].translation
-        self._ft_rotation = self.robot_data.oMf[self._ft_id].rotation
-        """Views into ``robot_data``, which every forward kinematics rewrites."""
-        self._contact = self._twin[k.T_CONTACT : k.T_CONTACT + 6]
+        self._contact = twin[k.T_CONTACT : k.T_CONTACT + 6]
         """Environment wrench on the hand subtree at the ft site, world axes."""
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
+        self._ft_id = self.robot.getFrameId(FT_SITE)
         self._fixture = scene_hooks.fixture_twin(scene)
         self._grasp = 0.0
         """Finger position [m] where the fingers stop on a grasped fixture part (0: none)."""
-        k.twin_wrist(self.arm.buffer, self._twin, self._ft_rotation)
+        k.twin_wrist(self.arm.buffer, twin, self.arm.index, self.arm.frames)
 
     @property
     def fixture(self) -> scene_hooks.FixtureTwin | None:
@@ -151,27 +143,39 @@ class PinocchioPlant:
         return frames, points
 
     def step(self, tau: np.ndarray, grip: float) -> None:
-        """One DT: contacts, arm dynamics, then the first-order fingers."""
-        pin.framesForwardKinematics(self.robot, self.robot_data, self.q)
-        arm, twin = self.arm, self._twin
+        """One DT: contacts, arm dynamics, the first-order fingers; then Pinocchio's terms at
+        the state reached."""
+        arm = self.arm
         if tau is not arm.tau:
             arm.tau[:] = tau
-        near = k.twin_forces(arm.buffer, twin, self._hand_position, self._reach, self._near)
+        speed = grip / FINGER_DAMPING
+        alone = self._fixture is None
+        if not k.twin_step(
+            arm.buffer, self._twin, arm.index, arm.frames, speed, self._grasp, alone
+        ):
+            self._interact(grip, speed)
+        arm.compute()
+
+    def _interact(self, grip: float, finger_speed: float) -> None:
+        """The step near a static box or with a fixture twin: their forces, then the
+        integration."""
+        arm = self.arm
+        pin.updateFramePlacements(self.robot, self.robot_data)
         left = right = False
-        if near:
+        if np.any(self._near):
             boxes = [box for box, hit in zip(self._boxes, self._near, strict=True) if hit]
             left, right = self._apply_contacts(self._generalized, boxes)
         if self._fixture is not None:
             self._apply_fixture(self._generalized, grip)
-        a = pin.aba(self._arm, self._arm_data, self._arm_q, self._arm_v, self._arm_generalized)
         k.twin_integrate(
-            arm.buffer, twin, a, self._ft_rotation,
-            grip / FINGER_DAMPING, self._grasp, left, right,
+            arm.buffer, self._twin, arm.index, arm.frames,
+            finger_speed, self._grasp, left, right,
         )  # fmt: skip
 
     def _apply_fixture(self, generalized: np.ndarray, grip: float) -> None:
         """Step the scene's fixture twin; add its wrench at the TCP to joints and wrist."""
-        tcp = self.robot_data.oMf[self._tcp_id]
+        data = self.robot_data
+        tcp = data.oMf[self._tcp_id]
         if grip <= 0:
             self._grasp = 0.0
         elif self._grasp == 0.0 and self._fixture.graspable(tcp.translation):
@@ -180,11 +184,9 @@ class PinocchioPlant:
         wrench = self._fixture.step(k.DT, tcp.translation, tcp.rotation, closed_on_part)
         if not np.any(wrench):
             return
-        jacobian = pin.computeFrameJacobian(
-            self.robot, self.robot_data, self.q, self._tcp_id, pin.LOCAL_WORLD_ALIGNED
-        )
+        jacobian = pin.getFrameJacobian(self.robot, data, self._tcp_id, pin.LOCAL_WORLD_ALIGNED)
         generalized += jacobian.T @ wrench
-        ft = self.robot_data.oMf[self._ft_id].translation
+        ft = data.oMf[self._ft_id].translation
         self._contact[:3] += wrench[:3]
         self._contact[3:] += wrench[3:] + cross(tcp.translation - ft, wrench[:3])
 
@@ -196,7 +198,6 @@ class PinocchioPlant:
         data = self.robot_data
         blocked = [False, False]
         ft = data.oMf[self._ft_id].translation
-        jacobians_ready = False
         for index, (frame, local) in enumerate(zip(self._frames, self._points, strict=True)):
             placement = data.oMf[frame]
             world = placement.rotation @ local + placement.translation[:, None]
@@ -206,9 +207,6 @@ class PinocchioPlant:
                 hits = np.flatnonzero(np.all(depth > 0, axis=1))
                 if hits.size == 0:
                     continue
-                if not jacobians_ready:
-                    pin.computeJointJacobians(self.robot, data, self.q)
-                    jacobians_ready = True
                 jacobian = pin.getFrameJacobian(self.robot, data, frame, pin.LOCAL_WORLD_ALIGNED)
                 for hit in hits:
                     axis = int(np.argmin(depth[hit]))

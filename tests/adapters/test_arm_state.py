@@ -8,21 +8,23 @@ joints do not start at address 0.
 """
 
 import numpy as np
+import pinocchio as pin
 import pytest
 
 from lightrocks.adapters import kernels as k
-from lightrocks.adapters.arm import SLOW_EVERY, PinocchioArm
+from lightrocks.adapters.arm import PinocchioArm
+from lightrocks.adapters.kernels import SLOW_EVERY
 from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.mujoco.plant import MujocoPlant
 from lightrocks.adapters.pinocchio.plant import PinocchioPlant
-from lightrocks.adapters.robot_model import ARM_DOF, NV, load_robot
+from lightrocks.adapters.robot_model import ARM_DOF, FINGER_JOINTS, NV, load_robot
 
 TOLERANCE = 1e-9
 FIELDS = ("q", "v", "position", "rotation", "ft_position", "ft_rotation", "jacobian", "twist")
 
 
 def _twin_of(plant: MujocoPlant) -> PinocchioArm:
-    """A Pinocchio arm state that reads the MuJoCo plant's joint arrays."""
+    """A Pinocchio arm state that reads the MuJoCo plant's joint arrays (on ``compute``)."""
     return PinocchioArm(load_robot(), plant.q, plant.v)
 
 
@@ -45,6 +47,7 @@ def test_arm_states_agree_while_stepping(scene: str) -> None:
     for _ in range(2 * SLOW_EVERY + 3):
         plant.step(rng.normal(0.0, 20.0, ARM_DOF), grip=10.0)
         plant.arm.update()
+        twin.compute()
         twin.update()
         _assert_same(plant.arm, twin)
     assert np.any(plant.v != 0.0)
@@ -58,6 +61,7 @@ def test_the_arm_state_describes_the_state_reached_by_the_step() -> None:
     plant.step(np.full(ARM_DOF, 30.0), grip=0.0)
     plant.arm.update()
     twin = _twin_of(plant)
+    twin.compute()
     twin.update()
     assert not np.allclose(before, plant.arm.position, atol=1e-12)
     assert np.allclose(plant.arm.position, twin.position, atol=TOLERANCE)
@@ -71,6 +75,7 @@ def test_arm_states_agree_on_random_configurations() -> None:
         plant.q[:ARM_DOF] = rng.uniform(-2.0, 2.0, ARM_DOF)
         plant.v[:] = rng.normal(size=NV)
         plant.step(np.zeros(ARM_DOF), grip=0.0)
+        twin.compute()
         for _ in range(SLOW_EVERY):  # a fresh mass matrix for the new configuration
             plant.arm.update()
             twin.update()
@@ -102,3 +107,26 @@ def test_update_takes_the_state_without_advancing_the_wrist_sensing(kind: str) -
     assert np.array_equal(plant.arm.sensing[filtered], after_sense)
     plant.arm.sense()
     assert not np.array_equal(plant.arm.sensing[filtered], after_sense)
+
+
+def test_a_twin_step_follows_pinocchios_forward_dynamics_with_the_fingers_where_they_are() -> None:
+    """The twin's arm accelerations are ABA's for the arm with the fingers locked at their
+    current opening (no grip force: the fingers rest), whatever the opening."""
+    plant = PinocchioPlant("empty")
+    robot, rng = load_robot(), np.random.default_rng(3)
+    fingers = [robot.getJointId(name) for name in FINGER_JOINTS]
+    damping = -plant._twin[k.T_DAMPING : k.T_DAMPING + ARM_DOF]
+    for opening in (0.0, 0.015, 0.04):
+        plant.q[:ARM_DOF] = rng.uniform(-1.5, 1.5, ARM_DOF)
+        plant.q[ARM_DOF:] = opening
+        plant.v[:ARM_DOF], plant.v[ARM_DOF:] = rng.normal(size=ARM_DOF), 0.0
+        plant.arm.compute()
+        q, v, tau = plant.q.copy(), plant.v.copy(), rng.normal(0.0, 20.0, ARM_DOF)
+        arm = pin.buildReducedModel(robot, fingers, q)
+        expected = pin.aba(
+            arm, arm.createData(), q[:ARM_DOF], v[:ARM_DOF], tau - damping * v[:ARM_DOF]
+        )
+        plant.step(tau, grip=0.0)
+        assert np.allclose((plant.v[:ARM_DOF] - v[:ARM_DOF]) / k.DT, expected, atol=1e-8)
+        assert np.allclose(plant.q[:ARM_DOF], q[:ARM_DOF] + k.DT * plant.v[:ARM_DOF], atol=1e-15)
+        assert np.array_equal(plant.q[ARM_DOF:], q[ARM_DOF:])
