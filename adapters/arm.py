@@ -99,9 +99,10 @@ class PinocchioArm(ArmState):
         self.model = model
         self.data = data = model.createData()
         self._joints = None if q is None or v is None else (q, v)
-        self.joint = carrier(model, (TCP_SITE, FT_SITE))
+        frames = (model.getFrameId(TCP_SITE), model.getFrameId(FT_SITE))
+        self.joint = carrier(model, frames)
         """The joint that carries the TCP and the ft site."""
-        self.frames = np.concatenate([in_joint(model, name) for name in (TCP_SITE, FT_SITE)])
+        self.frames = np.concatenate([in_joint(model, frame) for frame in frames])
         placement = data.oMi[self.joint]
         arrays = (data.J, data.nle, data.M, placement.rotation, placement.translation)
         if not all(a.flags.f_contiguous and a.dtype == np.float64 for a in arrays):
@@ -126,20 +127,21 @@ class PinocchioArm(ArmState):
         k.pinocchio_sense(self.buffer, self.index, self.frames, True)
 
 
-def carrier(model: pin.Model, frames: tuple[str, ...]) -> int:
-    """The joint that carries all the named frames, which the arm joints (the first ARM_DOF
+def carrier(model: pin.Model, frames: tuple[int, ...]) -> int:
+    """The joint that carries all the frames (ids), which the arm joints (the first ARM_DOF
     velocities) move: the native reads take their placements and the TCP Jacobian from it."""
-    joints = {model.frames[model.getFrameId(name)].parentJoint for name in frames}
+    joints = {model.frames[frame].parentJoint for frame in frames}
+    names = ", ".join(model.frames[frame].name for frame in frames)
     if len(joints) != 1:
-        raise ValueError(f"frames {', '.join(frames)} are not on one joint")
+        raise ValueError(f"frames {names} are not on one joint")
     joint = joints.pop()
     moved_by = [model.joints[j].idx_v for j in model.supports[joint].tolist()[1:]]
     if moved_by != list(range(ARM_DOF)):
-        raise ValueError(f"frames {', '.join(frames)} are not moved by the arm joints alone")
+        raise ValueError(f"frames {names} are not moved by the arm joints alone")
     return joint
 
 
-def in_joint(model: pin.Model, frame: str) -> np.ndarray:
+def in_joint(model: pin.Model, frame: int) -> np.ndarray:
     """A frame's placement in its joint: rotation (row-major), then translation."""
-    placement = model.frames[model.getFrameId(frame)].placement
+    placement = model.frames[frame].placement
     return np.concatenate([placement.rotation.reshape(-1), placement.translation])

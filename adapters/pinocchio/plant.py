@@ -85,9 +85,10 @@ class PinocchioPlant:
         load_com = self._in_body(hand, self.data.subtree_com[hand])
         twin[k.T_LOAD : k.T_LOAD + 3] = float(self.model.body_subtreemass[hand]) * GRAVITY
         twin[k.T_LOAD_COM : k.T_LOAD_COM + 3] = load_com
-        if carrier(self.robot, (TCP_SITE, HAND_BODY)) != self.arm.joint:
+        hand_frame = self.robot.getFrameId(HAND_BODY, pin.BODY)
+        if carrier(self.robot, (hand_frame,)) != self.arm.joint:
             raise ValueError(f"the hand body {HAND_BODY!r} is not on the TCP's joint")
-        twin[k.T_HAND : k.T_HAND + 12] = in_joint(self.robot, HAND_BODY)
+        twin[k.T_HAND : k.T_HAND + 12] = in_joint(self.robot, hand_frame)
         reach = twin[k.T_BOXES :].reshape(-1, k.T_BOX)
         for row, (c, r, h) in zip(reach, self._boxes, strict=True):
             # the world-axis box (x, y, z low, then high) the hand origin enters to touch it

@@ -12,7 +12,7 @@ import pinocchio as pin
 import pytest
 
 from lightrocks.adapters import kernels as k
-from lightrocks.adapters.arm import PinocchioArm
+from lightrocks.adapters.arm import PinocchioArm, carrier
 from lightrocks.adapters.kernels import SLOW_EVERY
 from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.mujoco.plant import MujocoPlant
@@ -130,3 +130,18 @@ def test_a_twin_step_follows_pinocchios_forward_dynamics_with_the_fingers_where_
         assert np.allclose((plant.v[:ARM_DOF] - v[:ARM_DOF]) / k.DT, expected, atol=1e-8)
         assert np.allclose(plant.q[:ARM_DOF], q[:ARM_DOF] + k.DT * plant.v[:ARM_DOF], atol=1e-15)
         assert np.array_equal(plant.q[ARM_DOF:], q[ARM_DOF:])
+
+
+def test_the_native_reads_need_the_frames_on_one_joint_that_the_arm_joints_move() -> None:
+    robot = load_robot()
+
+    def body(name: str) -> int:
+        return robot.getFrameId(name, pin.BODY)
+
+    tcp, ft = robot.getFrameId("tcp"), robot.getFrameId("ft")
+    assert carrier(robot, (tcp, ft, body("hand"))) == robot.getJointId("j7")
+    with pytest.raises(ValueError, match="tcp, link1 are not on one joint"):
+        carrier(robot, (tcp, body("link1")))
+    for name in ("finger_left", "link3"):
+        with pytest.raises(ValueError, match="not moved by the arm joints alone"):
+            carrier(robot, (body(name),))

@@ -47,6 +47,18 @@ def test_spd_inverse_equals_numpy() -> None:
     assert np.array_equal(inverse, inverse.T)
 
 
+def test_cholesky_solve_equals_numpy() -> None:
+    rng = np.random.default_rng(8)
+    a = rng.normal(size=(7, 7))
+    spd, b = a @ a.T + 0.1 * np.eye(7), rng.normal(size=7)
+    low = np.zeros((7, 7))
+    k.cholesky(spd, low)
+    assert np.allclose(np.tril(low) @ np.tril(low).T, spd, rtol=0, atol=1e-12)
+    x = b.copy()
+    k.cholesky_solve(low, x)
+    assert np.allclose(x, np.linalg.solve(spd, b), rtol=1e-10, atol=1e-12)
+
+
 def test_cartesian_refresh_equals_the_numpy_formulas() -> None:
     """Damping from the diagonal of Λ in task axes, and the null-space projector."""
     rng = np.random.default_rng(9)
