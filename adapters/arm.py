@@ -105,9 +105,7 @@ class PinocchioArm(ArmState):
         self.frames = np.concatenate([in_joint(model, frame) for frame in frames])
         placement = data.oMi[self.joint]
         arrays = (data.J, data.nle, data.M, placement.rotation, placement.translation)
-        if not all(a.flags.f_contiguous and a.dtype == np.float64 for a in arrays):
-            raise ValueError("Pinocchio's data arrays are not column-major float64")
-        self.index = np.array([a.ctypes.data for a in arrays], dtype=np.int64)
+        self.index = np.array([address(a) for a in arrays], dtype=np.int64)
         """Addresses of Pinocchio's arrays (P_* in adapters.kernels): Eigen allocates them once
         with ``data``, which this arm state keeps."""
 
@@ -125,6 +123,14 @@ class PinocchioArm(ArmState):
 
     def sense(self) -> None:
         k.pinocchio_sense(self.buffer, self.index, self.frames, True)
+
+
+def address(array: np.ndarray) -> int:
+    """Where an array of Pinocchio's data starts, for native code to read it in place; they
+    are column-major float64 (Eigen's default)."""
+    if not (array.flags.f_contiguous and array.dtype == np.float64):
+        raise ValueError("Pinocchio's data arrays are not column-major float64")
+    return array.ctypes.data
 
 
 def carrier(model: pin.Model, frames: tuple[int, ...]) -> int:

@@ -171,17 +171,45 @@ T_GENERALIZED = T_CONTACT + 6
 """Generalized forces of the robot joints."""
 T_HAND = T_GENERALIZED + NV
 """Placement of the hand body in the frames' joint (see P_JOINT_ROT), as F_TCP."""
-T_LOW = T_HAND + 12
+T_STIFFNESS = T_HAND + 12
+"""Contacts: normal stiffness [N/m] and damping [N s/m] per point, Coulomb friction
+coefficient, and the sliding speed [m/s] at which friction reaches its limit."""
+T_CONTACT_DAMPING = T_STIFFNESS + 1
+T_FRICTION = T_CONTACT_DAMPING + 1
+T_SLIP = T_FRICTION + 1
+T_LOW = T_SLIP + 1
 """Room for a step's Cholesky factor of the arm's mass matrix (ARM_DOF x ARM_DOF), its
-accelerations, and the placement of the hand or the ft site (as F_TCP)."""
+accelerations, the placement of the hand or the ft site and that of a contact body (each as
+F_TCP)."""
 T_ACCELERATION = T_LOW + ARM_DOF * ARM_DOF
 T_PLACEMENT = T_ACCELERATION + ARM_DOF
-T_BOXES = T_PLACEMENT + 12
-"""Per static box: the reach (x, y, z low, then high) the hand origin must enter to touch it,
-then 1.0 when it is in reach at this step."""
-T_BOX = 7
+T_BODY = T_PLACEMENT + 12
+T_BOXES = T_BODY + 12
+"""The static boxes, T_BOX values each (offsets BOX_*)."""
+BOX_REACH = 0
+"""The world-axis box (x, y, z low, then high) the hand origin must enter to touch the box."""
+BOX_NEAR = BOX_REACH + 6
+"""1.0 when the hand origin is in reach at this step."""
+BOX_CENTRE = BOX_NEAR + 1
+BOX_ROT = BOX_CENTRE + 3
+"""The box's rotation, row-major."""
+BOX_HALF = BOX_ROT + 9
+"""Half sizes."""
+T_BOX = BOX_HALF + 3
 TWIN_SIZE = T_BOXES
 """Size of the buffer of a scene without static boxes; each box adds T_BOX."""
+
+# -- the twin's contact bodies (adapters.pinocchio.plant.PinocchioPlant) ----------------------
+B_ROT, B_POS, B_START, B_COUNT = range(4)
+"""``links`` array, per body (hand, then the fingers): the addresses of the rotation
+(column-major) and translation of ``data.oMi`` of its joint, and where its points start in
+``bodies`` and how many there are."""
+B_INTS = B_COUNT + 1
+B_PLACEMENT = 0
+"""``bodies`` array, per body: its placement in its joint (as F_TCP), then 1.0 for each joint
+velocity that moves it; after all bodies, their points (x, y, z in the body frame)."""
+B_SUPPORT = B_PLACEMENT + 12
+B_HEADER = B_SUPPORT + NV
 
 # -- Pinocchio's data (adapters.arm.PinocchioArm.index and .frames) -------------------------------
 P_J, P_NLE, P_M, P_JOINT_ROT, P_JOINT_POS = range(5)
@@ -704,23 +732,38 @@ def _pinocchio(index: np.ndarray, what: int, size: int) -> np.ndarray:
 
 
 @njit(**_JIT)
-def _frame_placement(
-    index: np.ndarray, frames: np.ndarray, f: int, out: np.ndarray, rot: int, pos: int
+def _place(
+    joint_rot: np.ndarray,
+    joint_pos: np.ndarray,
+    placements: np.ndarray,
+    f: int,
+    out: np.ndarray,
+    rot: int,
+    pos: int,
 ) -> None:
-    """World placement of a frame (``frames[f:]``, or the twin's T_HAND) on its joint's
-    placement in Pinocchio's data: rotation (row-major) into ``out[rot:]``, translation into
-    ``out[pos:]``."""
-    joint_rot, joint_pos = _pinocchio(index, P_JOINT_ROT, 9), _pinocchio(index, P_JOINT_POS, 3)
+    """World placement of a frame (its placement in its joint at ``placements[f:]``, as F_TCP)
+    on its joint's placement (Pinocchio's: rotation column-major): rotation (row-major) into
+    ``out[rot:]``, translation into ``out[pos:]``."""
     for r in range(3):
         total = 0.0
         for m in range(3):
-            total += joint_rot[r + 3 * m] * frames[f + 9 + m]
+            total += joint_rot[r + 3 * m] * placements[f + 9 + m]
         out[pos + r] = total + joint_pos[r]
         for c in range(3):
             total = 0.0
             for m in range(3):
-                total += joint_rot[r + 3 * m] * frames[f + 3 * m + c]
+                total += joint_rot[r + 3 * m] * placements[f + 3 * m + c]
             out[rot + 3 * r + c] = total
+
+
+@njit(**_JIT)
+def _frame_placement(
+    index: np.ndarray, frames: np.ndarray, f: int, out: np.ndarray, rot: int, pos: int
+) -> None:
+    """``_place`` for a frame on the joint at P_JOINT_ROT (``frames[f:]``, or the twin's
+    T_HAND)."""
+    joint_rot, joint_pos = _pinocchio(index, P_JOINT_ROT, 9), _pinocchio(index, P_JOINT_POS, 3)
+    _place(joint_rot, joint_pos, frames, f, out, rot, pos)
 
 
 @njit(**_JIT)
@@ -782,12 +825,114 @@ def twin_step(
     for b in range(T_BOXES, twin.shape[0], T_BOX):
         inside = twin[b] < x < twin[b + 3] and twin[b + 1] < y < twin[b + 4]
         inside = inside and twin[b + 2] < z < twin[b + 5]
-        twin[b + 6] = 1.0 if inside else 0.0
+        twin[b + BOX_NEAR] = 1.0 if inside else 0.0
         near = near or inside
     if near or not alone:
         return False
     twin_integrate(arm, twin, index, frames, finger_speed, grasp, False, False)
     return True
+
+
+@njit(**_JIT)
+def twin_contacts(
+    arm: np.ndarray,
+    twin: np.ndarray,
+    index: np.ndarray,
+    frames: np.ndarray,
+    links: np.ndarray,
+    bodies: np.ndarray,
+) -> int:
+    """Penalty contacts of the contact bodies' points against the static boxes flagged near:
+    a point inside a box is pushed out through the nearest face (spring-damper) with
+    regularised Coulomb friction; the forces go into the generalized forces (through the
+    point's Jacobian) and the contact wrench at the ft site. Returns which fingers touch a box
+    (bit 0: the first, bit 1: the second)."""
+    joints = _pinocchio(index, P_J, 6 * NV)
+    _frame_placement(index, frames, F_FT, twin, T_PLACEMENT, T_PLACEMENT + 9)
+    ft = twin[T_PLACEMENT + 9 : T_PLACEMENT + 12]
+    stiffness, damping = twin[T_STIFFNESS], twin[T_CONTACT_DAMPING]
+    friction, slip_full = twin[T_FRICTION], twin[T_SLIP]
+    place = twin[T_BODY : T_BODY + 12]
+    jac = np.empty((3, NV))
+    blocked = 0
+    for body in range(links.shape[0] // B_INTS):
+        link = links[B_INTS * body : B_INTS * body + B_INTS]
+        joint_rot = carray(_doubles_at(link[B_ROT]), 9)
+        joint_pos = carray(_doubles_at(link[B_POS]), 3)
+        _place(
+            joint_rot, joint_pos, bodies, B_HEADER * body + B_PLACEMENT, twin, T_BODY, T_BODY + 9
+        )
+        support = B_HEADER * body + B_SUPPORT
+        for b in range(T_BOXES, twin.shape[0], T_BOX):
+            if twin[b + BOX_NEAR] == 0.0:
+                continue
+            box_rot, centre, half = b + BOX_ROT, b + BOX_CENTRE, b + BOX_HALF
+            for point in range(link[B_COUNT]):
+                at = link[B_START] + 3 * point
+                lx, ly, lz = bodies[at], bodies[at + 1], bodies[at + 2]
+                wx = place[0] * lx + place[1] * ly + place[2] * lz + place[9]
+                wy = place[3] * lx + place[4] * ly + place[5] * lz + place[10]
+                wz = place[6] * lx + place[7] * ly + place[8] * lz + place[11]
+                ex, ey, ez = wx - twin[centre], wy - twin[centre + 1], wz - twin[centre + 2]
+                inside = (
+                    twin[box_rot] * ex + twin[box_rot + 3] * ey + twin[box_rot + 6] * ez,
+                    twin[box_rot + 1] * ex + twin[box_rot + 4] * ey + twin[box_rot + 7] * ez,
+                    twin[box_rot + 2] * ex + twin[box_rot + 5] * ey + twin[box_rot + 8] * ez,
+                )
+                depth = (
+                    twin[half] - abs(inside[0]),
+                    twin[half + 1] - abs(inside[1]),
+                    twin[half + 2] - abs(inside[2]),
+                )
+                if depth[0] <= 0 or depth[1] <= 0 or depth[2] <= 0:
+                    continue
+                axis = 0
+                for i in range(1, 3):
+                    if depth[i] < depth[axis]:
+                        axis = i
+                side = 1.0 if inside[axis] > 0 else (-1.0 if inside[axis] < 0 else 0.0)
+                normal = np.empty(3)
+                for i in range(3):
+                    normal[i] = twin[box_rot + 3 * i + axis] * side
+                velocity = np.zeros(3)
+                for c in range(NV):  # the point's Jacobian: v + ω × point, moving columns
+                    col = 6 * c
+                    ox, oy, oz = joints[col + 3], joints[col + 4], joints[col + 5]
+                    move = bodies[support + c]
+                    jac[0, c] = move * (joints[col] + oy * wz - oz * wy)
+                    jac[1, c] = move * (joints[col + 1] + oz * wx - ox * wz)
+                    jac[2, c] = move * (joints[col + 2] + ox * wy - oy * wx)
+                    for i in range(3):
+                        velocity[i] += jac[i, c] * arm[STATE + NV + c]
+                normal_speed = normal[0] * velocity[0]
+                normal_speed += normal[1] * velocity[1] + normal[2] * velocity[2]
+                pressure = max(stiffness * depth[axis] - damping * normal_speed, 0.0)
+                slip = np.empty(3)
+                for i in range(3):
+                    slip[i] = velocity[i] - normal_speed * normal[i]
+                slip_speed = math.sqrt(slip[0] ** 2 + slip[1] ** 2 + slip[2] ** 2)
+                scale = 0.0
+                if slip_speed > 0:
+                    scale = -friction * pressure * min(slip_speed / slip_full, 1.0) / slip_speed
+                force = np.empty(3)
+                for i in range(3):
+                    force[i] = pressure * normal[i] + scale * slip[i]
+                for c in range(NV):
+                    total = 0.0
+                    for i in range(3):
+                        total += jac[i, c] * force[i]
+                    twin[T_GENERALIZED + c] += total
+                dx, dy, dz = wx - ft[0], wy - ft[1], wz - ft[2]
+                fx, fy, fz = force[0], force[1], force[2]
+                twin[T_CONTACT] += fx
+                twin[T_CONTACT + 1] += fy
+                twin[T_CONTACT + 2] += fz
+                twin[T_CONTACT + 3] += dy * fz - dz * fy
+                twin[T_CONTACT + 4] += dz * fx - dx * fz
+                twin[T_CONTACT + 5] += dx * fy - dy * fx
+                if body > 0:
+                    blocked |= 1 << (body - 1)
+    return blocked
 
 
 @njit(**_JIT)
@@ -867,6 +1012,7 @@ def warm_up() -> None:
     pinocchio_sense(arm, index, frames, True)
     twin = np.zeros(TWIN_SIZE + T_BOX)
     twin_step(arm, twin, index, frames, 0.1, 0.0, True)
+    twin_contacts(arm, twin, index, frames, np.zeros(0, dtype=np.int64), np.zeros(0))
 
 
 def warm_up_mujoco(mj: np.ndarray, scratch: np.ndarray, index: np.ndarray) -> None:

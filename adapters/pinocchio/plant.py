@@ -25,7 +25,7 @@ import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters import scene_hooks
-from lightrocks.adapters.arm import PinocchioArm, carrier, in_joint
+from lightrocks.adapters.arm import PinocchioArm, address, carrier, in_joint
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
     ARM_JOINTS,
@@ -75,9 +75,9 @@ class PinocchioPlant:
         """Pinocchio's data, shared with the arm state: its ``compute`` serves both."""
         self.arm.compute()
         self.sync()
-        self._boxes = self._static_boxes()
-        self._twin = twin = np.zeros(k.TWIN_SIZE + k.T_BOX * len(self._boxes))
-        """Parameters, per-step forces and the static boxes' reach (layout in adapters.kernels)."""
+        boxes = self._static_boxes()
+        self._twin = twin = np.zeros(k.TWIN_SIZE + k.T_BOX * len(boxes))
+        """Parameters, per-step forces and the static boxes (layout in adapters.kernels)."""
         damping = [self.model.dof_damping[j.dofadr[0]] for j in joints]
         twin[k.T_DAMPING : k.T_DAMPING + NV] = -np.array(damping)
         self._generalized = twin[k.T_GENERALIZED : k.T_GENERALIZED + NV]
@@ -89,13 +89,15 @@ class PinocchioPlant:
         if carrier(self.robot, (hand_frame,)) != self.arm.joint:
             raise ValueError(f"the hand body {HAND_BODY!r} is not on the TCP's joint")
         twin[k.T_HAND : k.T_HAND + 12] = in_joint(self.robot, hand_frame)
-        reach = twin[k.T_BOXES :].reshape(-1, k.T_BOX)
-        for row, (c, r, h) in zip(reach, self._boxes, strict=True):
-            # the world-axis box (x, y, z low, then high) the hand origin enters to touch it
-            row[:6] = (*(c - np.abs(r) @ h - REACH), *(c + np.abs(r) @ h + REACH))
-        self._near = reach[:, 6]
-        """Which boxes the hand is near, per step (1.0 or 0.0)."""
-        self._frames, self._points = self._contact_points()
+        twin[k.T_STIFFNESS], twin[k.T_CONTACT_DAMPING] = CONTACT_STIFFNESS, CONTACT_DAMPING
+        twin[k.T_FRICTION], twin[k.T_SLIP] = FRICTION, FRICTION_SLIP
+        for row, (c, r, h) in zip(twin[k.T_BOXES :].reshape(-1, k.T_BOX), boxes, strict=True):
+            reach = np.abs(r) @ h + REACH
+            row[k.BOX_REACH : k.BOX_NEAR] = (*(c - reach), *(c + reach))
+            row[k.BOX_CENTRE : k.BOX_ROT] = c
+            row[k.BOX_ROT : k.BOX_HALF] = r.reshape(-1)
+            row[k.BOX_HALF :] = h
+        self._links, self._bodies = self._contact_bodies()
         self._contact = twin[k.T_CONTACT : k.T_CONTACT + 6]
         """Environment wrench on the hand subtree at the ft site, world axes."""
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
@@ -126,11 +128,15 @@ class PinocchioPlant:
                 )
         return boxes
 
-    def _contact_points(self) -> tuple[list[int], list[np.ndarray]]:
-        """Pinocchio frame ids and, per frame, the box-geom corners in that frame (3 x n)."""
-        m = self.model
-        frames, points = [], []
-        for name in CONTACT_BODIES:
+    def _contact_bodies(self) -> tuple[np.ndarray, np.ndarray]:
+        """The ``links`` and ``bodies`` arrays of the contact bodies (adapters.kernels B_*):
+        where Pinocchio keeps each body's joint placement, and the corners of its box geoms
+        in its frame."""
+        m, robot = self.model, self.robot
+        links = np.zeros(k.B_INTS * len(CONTACT_BODIES), dtype=np.int64)
+        headers, points = [], []
+        start = k.B_HEADER * len(CONTACT_BODIES)
+        for index, name in enumerate(CONTACT_BODIES):
             body = m.body(name).id
             corners = []
             for g in range(m.ngeom):
@@ -139,9 +145,19 @@ class PinocchioPlant:
                     mujoco.mju_quat2Mat(rotation, m.geom_quat[g])
                     local = _CORNERS * m.geom_size[g]
                     corners.append(local @ rotation.reshape(3, 3).T + m.geom_pos[g])
-            frames.append(self.robot.getFrameId(name, pin.BODY))
-            points.append(np.vstack(corners).T)
-        return frames, points
+            frame = robot.getFrameId(name, pin.BODY)
+            joint = robot.frames[frame].parentJoint
+            moves = np.zeros(NV)
+            moves[[robot.joints[j].idx_v for j in robot.supports[joint].tolist()[1:]]] = 1.0
+            headers.append(np.concatenate([in_joint(robot, frame), moves]))
+            points.append(np.vstack(corners).reshape(-1))
+            placement = self.robot_data.oMi[joint]
+            link = links[k.B_INTS * index : k.B_INTS * (index + 1)]
+            link[k.B_ROT] = address(placement.rotation)
+            link[k.B_POS] = address(placement.translation)
+            link[k.B_START], link[k.B_COUNT] = start, len(points[-1]) // 3
+            start += len(points[-1])
+        return links, np.concatenate(headers + points)
 
     def step(self, tau: np.ndarray, grip: float) -> None:
         """One DT: contacts, arm dynamics, the first-order fingers; then Pinocchio's terms at
@@ -160,17 +176,18 @@ class PinocchioPlant:
     def _interact(self, grip: float, finger_speed: float) -> None:
         """The step near a static box or with a fixture twin: their forces, then the
         integration."""
-        arm = self.arm
-        pin.updateFramePlacements(self.robot, self.robot_data)
-        left = right = False
-        if np.any(self._near):
-            boxes = [box for box, hit in zip(self._boxes, self._near, strict=True) if hit]
-            left, right = self._apply_contacts(self._generalized, boxes)
+        arm, twin = self.arm, self._twin
+        blocked = 0
+        if np.any(twin[k.T_BOXES + k.BOX_NEAR :: k.T_BOX]):
+            blocked = k.twin_contacts(
+                arm.buffer, twin, arm.index, arm.frames, self._links, self._bodies
+            )
         if self._fixture is not None:
+            pin.updateFramePlacements(self.robot, self.robot_data)
             self._apply_fixture(self._generalized, grip)
         k.twin_integrate(
-            arm.buffer, self._twin, arm.index, arm.frames,
-            finger_speed, self._grasp, left, right,
+            arm.buffer, twin, arm.index, arm.frames,
+            finger_speed, self._grasp, bool(blocked & 1), bool(blocked & 2),
         )  # fmt: skip
 
     def _apply_fixture(self, generalized: np.ndarray, grip: float) -> None:
@@ -190,50 +207,6 @@ class PinocchioPlant:
         ft = data.oMf[self._ft_id].translation
         self._contact[:3] += wrench[:3]
         self._contact[3:] += wrench[3:] + cross(tcp.translation - ft, wrench[:3])
-
-    def _apply_contacts(
-        self, generalized: np.ndarray, near: list[tuple[np.ndarray, np.ndarray, np.ndarray]]
-    ) -> list[bool]:
-        """Add the contact forces of the ``near`` boxes to ``generalized`` and the contact
-        wrench; return which fingers touch a box."""
-        data = self.robot_data
-        blocked = [False, False]
-        ft = data.oMf[self._ft_id].translation
-        for index, (frame, local) in enumerate(zip(self._frames, self._points, strict=True)):
-            placement = data.oMf[frame]
-            world = placement.rotation @ local + placement.translation[:, None]
-            for centre, rotation, half in near:
-                inside = (rotation.T @ (world - centre[:, None])).T
-                depth = half - np.abs(inside)
-                hits = np.flatnonzero(np.all(depth > 0, axis=1))
-                if hits.size == 0:
-                    continue
-                jacobian = pin.getFrameJacobian(self.robot, data, frame, pin.LOCAL_WORLD_ALIGNED)
-                for hit in hits:
-                    axis = int(np.argmin(depth[hit]))
-                    normal = rotation[:, axis] * np.sign(inside[hit, axis])
-                    point = world[:, hit]
-                    j_point = jacobian[:3] - pin.skew(point - placement.translation) @ jacobian[3:]
-                    velocity = j_point @ self.v
-                    force = self._contact_force(depth[hit, axis], normal, velocity)
-                    generalized += j_point.T @ force
-                    self._contact[:3] += force
-                    self._contact[3:] += cross(point - ft, force)
-                    if index > 0:
-                        blocked[index - 1] = True
-        return blocked
-
-    @staticmethod
-    def _contact_force(depth: float, normal: np.ndarray, velocity: np.ndarray) -> np.ndarray:
-        normal_speed = float(normal @ velocity)
-        pressure = max(CONTACT_STIFFNESS * depth - CONTACT_DAMPING * normal_speed, 0.0)
-        slip = velocity - normal_speed * normal
-        slip_speed = float(np.linalg.norm(slip))
-        friction = np.zeros(3)
-        if slip_speed > 0:
-            friction = -FRICTION * pressure * min(slip_speed / FRICTION_SLIP, 1.0) * slip
-            friction /= slip_speed
-        return pressure * normal + friction
 
     def wrist(self) -> np.ndarray:
         """The raw reading of the last step: the arm state's ``raw``, quasi-static: what link7
