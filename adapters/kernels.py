@@ -808,11 +808,12 @@ def twin_step(
     finger_speed: float,
     grasp: float,
     alone: bool,
-) -> bool:
+) -> int:
     """A twin step as far as native code goes: generalized forces ``−damping q̇ + τ``, no
     contact yet, and the static boxes whose reach holds the hand origin flagged. With none and
-    the arm ``alone`` (no fixture twin to step), the whole step (``twin_integrate``); returns
-    whether it did so, else the caller adds the interactions and integrates."""
+    the arm ``alone`` (no fixture twin to step), the whole step (``twin_integrate``), and
+    returns -1; otherwise returns how many boxes are near, and the caller adds the
+    interactions and integrates."""
     for j in range(NV):
         twin[T_GENERALIZED + j] = twin[T_DAMPING + j] * arm[STATE + NV + j]
     for j in range(ARM_DOF):
@@ -821,16 +822,16 @@ def twin_step(
         twin[T_CONTACT + i] = 0.0
     _frame_placement(index, twin, T_HAND, twin, T_PLACEMENT, T_PLACEMENT + 9)
     x, y, z = twin[T_PLACEMENT + 9], twin[T_PLACEMENT + 10], twin[T_PLACEMENT + 11]
-    near = False
+    near = 0
     for b in range(T_BOXES, twin.shape[0], T_BOX):
         inside = twin[b] < x < twin[b + 3] and twin[b + 1] < y < twin[b + 4]
         inside = inside and twin[b + 2] < z < twin[b + 5]
         twin[b + BOX_NEAR] = 1.0 if inside else 0.0
-        near = near or inside
+        near += inside
     if near or not alone:
-        return False
+        return near
     twin_integrate(arm, twin, index, frames, finger_speed, grasp, False, False)
-    return True
+    return -1
 
 
 @njit(**_JIT)

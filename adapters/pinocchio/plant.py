@@ -167,18 +167,17 @@ class PinocchioPlant:
             arm.tau[:] = tau
         speed = grip / FINGER_DAMPING
         alone = self._fixture is None
-        if not k.twin_step(
-            arm.buffer, self._twin, arm.index, arm.frames, speed, self._grasp, alone
-        ):
-            self._interact(grip, speed)
+        near = k.twin_step(arm.buffer, self._twin, arm.index, arm.frames, speed, self._grasp, alone)
+        if near >= 0:
+            self._interact(grip, speed, near > 0)
         arm.compute()
 
-    def _interact(self, grip: float, finger_speed: float) -> None:
-        """The step near a static box or with a fixture twin: their forces, then the
+    def _interact(self, grip: float, finger_speed: float, near: bool) -> None:
+        """The step ``near`` a static box or with a fixture twin: their forces, then the
         integration."""
         arm, twin = self.arm, self._twin
         blocked = 0
-        if np.any(twin[k.T_BOXES + k.BOX_NEAR :: k.T_BOX]):
+        if near:
             blocked = k.twin_contacts(
                 arm.buffer, twin, arm.index, arm.frames, self._links, self._bodies
             )
