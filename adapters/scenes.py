@@ -70,6 +70,16 @@ TERMINAL_TRAY_Z = 0.1101
 TERMINAL_HEIGHT = 0.04
 SNAP_FORCE = 34.0
 """Designed snap-through force [N] of a terminal (measured: see docs/scenes.md)."""
+LIPS = (0.0125, 0.0175)
+"""Distance [m] of the rail lips' inner and outer edges from its centre line (din_rail.xml)."""
+WEDGE_REACH = 0.0235
+"""Distance [m] of the latch wedges' outer ends from the terminal's centre (din_rail.xml)."""
+RAMP_BOTTOM = 0.0061
+"""Depth [m] of the wedges' lowest point, their outer end, below the housing underside."""
+LEAD_IN = WEDGE_REACH - LIPS[1]
+"""A terminal set down closer than this [m] to the rail's centre line meets a lip with a latch
+ramp, which pushes it onto the centre line; up to WEDGE_REACH - LIPS[0] off, a wedge's end
+stands on a lip."""
 LATCH_ENGAGED = 0.00075
 """A latch deflected less than this [m] has its catch under the lip (overlap is 1.5 mm)."""
 
@@ -441,7 +451,11 @@ class RailTwin:
     """Kinematic terminals and rail for dry runs (same ``step`` interface as ScrewTwin).
 
     A closed gripper whose TCP is within 8 mm (x, y) and 12 mm (z) of a terminal's grasp point
-    (25 mm above its underside, centre) carries that terminal rigidly. Over the rail, pushing
+    (25 mm above its underside, centre) carries that terminal rigidly. A carried terminal within
+    LEAD_IN of the rail's centre line whose ramps reach the lips is slid onto the centre line
+    in the grip (the lead-in; MuJoCo's soft hand moves sideways instead). Farther off, up to
+    WEDGE_REACH - LIPS[0], the end of one wedge stands on a lip: a stiff upward force there,
+    which twists the wrist. Over the rail, pushing
     a carried terminal down meets the snap-fit: the resisting force rises linearly to
     ``snap_force`` over the 1.5 mm ramp, falls to the ``friction`` plateau for the next
     1 mm, and the terminal latches when its underside is 0.1 mm above the lips; pushing on
@@ -499,11 +513,20 @@ class RailTwin:
                     term.carried, term.offset = True, term.position - tcp
                 continue
             wanted = tcp + term.offset
-            over_rail = abs(wanted[0] - RAIL_X) < 0.003 and abs(wanted[1]) < RAIL_HALF_LENGTH
-            if not over_rail:
+            across = float(wanted[0]) - RAIL_X
+            height = float(wanted[2]) - RAIL_LIP_TOP_Z
+            along_rail = abs(wanted[1]) < RAIL_HALF_LENGTH
+            if along_rail and LEAD_IN <= abs(across) < WEDGE_REACH - LIPS[0]:
+                term.position = wanted
+                if height < RAMP_BOTTOM:
+                    self._stand_on_lip(term, tcp, across, height, wrench)
+                continue
+            if not (along_rail and abs(across) < LEAD_IN):
                 term.position = wanted
                 continue
-            height = float(wanted[2]) - RAIL_LIP_TOP_Z
+            if height < RAMP_BOTTOM:  # the ramps on the lips: the lead-in
+                term.offset[0] -= across
+                wanted[0] = RAIL_X
             if not term.latched and height < 0.0001:
                 term.latched = True
             if term.latched:  # held down by the lips, held up by the catches
@@ -513,6 +536,17 @@ class RailTwin:
                 term.position = wanted
                 wrench[2] += self._resistance(height)
         return wrench
+
+    def _stand_on_lip(
+        self, term: _Terminal, tcp: np.ndarray, across: float, height: float, wrench: np.ndarray
+    ) -> None:
+        """A wedge's end on a lip: the terminal stays on it, pushed up (``seat_stiffness``) at
+        that end, which adds a torque about the TCP."""
+        term.position[2] = RAIL_LIP_TOP_Z + RAMP_BOTTOM
+        push = self.seat_stiffness * (RAMP_BOTTOM - height)
+        end = term.position - np.array([math.copysign(WEDGE_REACH, across), 0.0, 0.0])
+        wrench[2] += push
+        wrench[3:] += np.cross(end - tcp, (0.0, 0.0, push))
 
     def measurements(self) -> dict[str, float | bool]:
         values: dict[str, float | bool] = {}

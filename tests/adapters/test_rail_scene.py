@@ -7,6 +7,7 @@ force ramp. The arm is held up by gravity compensation so that it stays out of t
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import mujoco
@@ -151,6 +152,43 @@ def test_rail_twin_snaps_and_holds() -> None:
     twin.step(0.001, tcp, down, holding=False)
     assert twin.measurements()["terminal2_latched"]
     assert twin.measurements()["terminals_latched"] == 1
+
+
+@pytest.mark.parametrize(("across", "latches"), [(0.005, True), (-0.005, True), (0.007, False)])
+def test_rail_twin_leads_a_terminal_within_6mm_onto_the_centre_line(
+    across: float, latches: bool
+) -> None:
+    twin = scenes.RailTwin()
+    down = np.diag([1.0, -1.0, -1.0])
+    grasp = np.array([scenes.TRAY_X, 0.0, scenes.TERMINAL_TRAY_Z + 0.025])
+    twin.step(0.001, grasp, down, holding=True)
+    over = np.array([scenes.RAIL_X + across, 0.0, scenes.RAIL_LIP_TOP_Z + 0.008 + 0.025])
+    for i in range(900):  # down 9 mm
+        twin.step(0.001, over - np.array([0.0, 0.0, 1e-5 * i]), down, holding=True)
+    assert twin.measurements()["terminal2_latched"] is latches
+    if latches:
+        assert twin.terminals["terminal2"].position[0] == scenes.RAIL_X
+
+
+@pytest.mark.parametrize("across", [0.008, -0.008])
+def test_rail_twin_terminal_beyond_the_lead_in_stands_on_a_lip_and_twists_the_wrist(
+    across: float,
+) -> None:
+    """The wedge's end on the lip, 23.5 mm from the terminal's centre, pushes up there: about
+    the TCP above the centre that is a twist about y of 23.5 mm times the force, its sign
+    telling the side."""
+    twin = scenes.RailTwin()
+    down = np.diag([1.0, -1.0, -1.0])
+    grasp = np.array([scenes.TRAY_X, 0.0, scenes.TERMINAL_TRAY_Z + 0.025])
+    twin.step(0.001, grasp, down, holding=True)
+    standing = scenes.RAIL_LIP_TOP_Z + scenes.RAMP_BOTTOM + 0.025
+    tcp = np.array([scenes.RAIL_X + across, 0.0, standing + 0.001])
+    assert not twin.step(0.001, tcp, down, holding=True).any()
+    wrench = twin.step(0.001, tcp - np.array([0.0, 0.0, 0.0011]), down, holding=True)
+    assert wrench[2] == pytest.approx(twin.seat_stiffness * 1e-4)
+    assert wrench[4] == pytest.approx(math.copysign(0.0235, across) * wrench[2])
+    assert not twin.measurements()["terminal2_latched"]
+    assert twin.measurements()["terminal2_height"] == pytest.approx(scenes.RAMP_BOTTOM)
 
 
 # --- robot level: pick a terminal from the tray and snap it onto the rail ---------------------
