@@ -14,7 +14,7 @@ The functions are compiled once and cached (numba's ``cache=True``) in ``__pycac
 this file, or in the user's cache folder where that is not writable (``NUMBA_CACHE_DIR``
 overrides both). The cache is keyed on this file (its time stamp and size) and the CPU, and
 written atomically, so processes may share it; everything the compiled code depends on is in
-this file. A cold start compiles for ~7 s; later starts load in ~0.2 s (``warm_up``).
+this file. A cold start compiles for ~10 s; later starts load in ~0.2 s (``warm_up``).
 
 ``exp3`` and ``log3`` follow Pinocchio's algorithms (same Taylor branches and thresholds),
 matrix products sum in index order: results equal NumPy's and Pinocchio's to rounding, not bit
