@@ -31,11 +31,7 @@ class MujocoArm(ArmState):
         k.warm_up_mujoco(mj, self._scratch, index)
 
     def update(self) -> None:
-        self._read(False)
+        k.mujoco_sense(self._mj, self._scratch, self._index, self.buffer, False)
 
     def sense(self) -> None:
-        self._read(True)
-
-    def _read(self, wrist: bool) -> None:
-        """One native call: the arm state, then with ``wrist`` the wrist sensing."""
-        k.mujoco_sense(self._mj, self._scratch, self._index, self.buffer, wrist)
+        k.mujoco_sense(self._mj, self._scratch, self._index, self.buffer, True)
