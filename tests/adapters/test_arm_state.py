@@ -7,6 +7,7 @@ steps (so they describe the state reached, not the one before), and in a scene w
 joints do not start at address 0.
 """
 
+import mujoco
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -145,3 +146,73 @@ def test_the_native_reads_need_the_frames_on_one_joint_that_the_arm_joints_move(
     for name in ("finger_left", "link3"):
         with pytest.raises(ValueError, match="not moved by the arm joints alone"):
             carrier(robot, (body(name),))
+
+
+def test_the_twins_native_contacts_equal_the_penalty_law_computed_with_numpy() -> None:
+    """A box placed over the hand and the left finger: every box-geom corner inside it is
+    pushed out through its nearest face, with friction against its velocity, through the
+    point's Jacobian (Pinocchio's ``getFrameJacobian``), and adds to the wrench at the ft
+    site; the left finger is reported blocked, the right one not."""
+    plant = PinocchioPlant("empty")
+    robot, data = plant.robot, plant.robot_data
+    rng = np.random.default_rng(4)
+    plant.v[:] = rng.normal(0.0, 0.2, NV)
+    plant.arm.compute()
+    pin.updateFramePlacements(robot, data)
+    hand = data.oMf[robot.getFrameId("hand", pin.BODY)]
+    centre = hand.translation + hand.rotation @ np.array([0.0, 0.05, 0.1])
+    rotation, half = pin.exp3(np.array([0.1, -0.2, 0.3])), np.array([0.05, 0.04, 0.03])
+    twin = plant._twin
+    boxes = twin[k.T_BOXES :].reshape(-1, k.T_BOX)
+    boxes[:, k.BOX_NEAR] = 0.0
+    boxes[0, k.BOX_NEAR], boxes[0, k.BOX_CENTRE : k.BOX_ROT] = 1.0, centre
+    boxes[0, k.BOX_ROT : k.BOX_HALF], boxes[0, k.BOX_HALF :] = rotation.reshape(-1), half
+    twin[k.T_GENERALIZED : k.T_GENERALIZED + NV] = 0.0
+    twin[k.T_CONTACT : k.T_CONTACT + 6] = 0.0
+    arm = plant.arm
+    blocked = k.twin_contacts(arm.buffer, twin, arm.index, arm.frames, plant._links, plant._bodies)
+
+    generalized, wrench, touching = np.zeros(NV), np.zeros(6), []
+    ft = data.oMf[robot.getFrameId("ft")].translation
+    for name in ("hand", *FINGER_JOINTS):
+        frame = robot.getFrameId(name, pin.BODY)
+        placement = data.oMf[frame]
+        jacobian = pin.getFrameJacobian(robot, data, frame, pin.LOCAL_WORLD_ALIGNED)
+        hits = 0
+        for corner in _box_corners(plant.model, name):
+            point = placement.act(corner)
+            inside = rotation.T @ (point - centre)
+            depth = half - np.abs(inside)
+            if np.any(depth <= 0):
+                continue
+            hits += 1
+            axis = int(np.argmin(depth))
+            normal = rotation[:, axis] * np.sign(inside[axis])
+            j_point = jacobian[:3] - pin.skew(point - placement.translation) @ jacobian[3:]
+            velocity = j_point @ plant.v
+            pressure = max(2e4 * depth[axis] - 200.0 * normal @ velocity, 0.0)
+            slip = velocity - (normal @ velocity) * normal
+            speed = np.linalg.norm(slip)
+            force = pressure * normal - pressure * min(speed / 1e-3, 1.0) * slip / speed
+            generalized += j_point.T @ force
+            wrench += np.concatenate([force, np.cross(point - ft, force)])
+        touching.append(hits > 0)
+    assert touching[0] and touching[1] and not touching[2]
+    assert blocked == 1
+    assert np.allclose(twin[k.T_GENERALIZED : k.T_GENERALIZED + NV], generalized, atol=1e-9)
+    assert np.allclose(twin[k.T_CONTACT : k.T_CONTACT + 6], wrench, atol=1e-9)
+    assert np.abs(wrench).max() > 1.0
+
+
+def _box_corners(model, body_name: str) -> list[np.ndarray]:
+    """The corners of a body's box geoms in the body frame, from the MJCF."""
+    body = model.body(body_name).id
+    corners = []
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] == body and model.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX:
+            rotation = np.zeros(9)
+            mujoco.mju_quat2Mat(rotation, model.geom_quat[g])
+            for signs in np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).T.reshape(-1, 3):
+                local = signs * model.geom_size[g]
+                corners.append(rotation.reshape(3, 3) @ local + model.geom_pos[g])
+    return corners
