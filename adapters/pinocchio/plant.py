@@ -57,6 +57,19 @@ REACH = 0.2
 _CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
 
 
+def box_corners(model: mujoco.MjModel, body_name: str) -> np.ndarray:
+    """The corners of a body's box geoms in the body frame (n x 3): its contact points."""
+    body = model.body(body_name).id
+    corners = []
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] == body and model.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX:
+            rotation = np.zeros(9)
+            mujoco.mju_quat2Mat(rotation, model.geom_quat[g])
+            local = _CORNERS * model.geom_size[g]
+            corners.append(local @ rotation.reshape(3, 3).T + model.geom_pos[g])
+    return np.vstack(corners)
+
+
 class PinocchioPlant:
     """A scene (read from the same MJCF) simulated with Pinocchio dynamics."""
 
@@ -132,25 +145,17 @@ class PinocchioPlant:
         """The ``links`` and ``bodies`` arrays of the contact bodies (adapters.kernels B_*):
         where Pinocchio keeps each body's joint placement, and the corners of its box geoms
         in its frame."""
-        m, robot = self.model, self.robot
+        robot = self.robot
         links = np.zeros(k.B_INTS * len(CONTACT_BODIES), dtype=np.int64)
         headers, points = [], []
         start = k.B_HEADER * len(CONTACT_BODIES)
         for index, name in enumerate(CONTACT_BODIES):
-            body = m.body(name).id
-            corners = []
-            for g in range(m.ngeom):
-                if m.geom_bodyid[g] == body and m.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX:
-                    rotation = np.zeros(9)
-                    mujoco.mju_quat2Mat(rotation, m.geom_quat[g])
-                    local = _CORNERS * m.geom_size[g]
-                    corners.append(local @ rotation.reshape(3, 3).T + m.geom_pos[g])
             frame = robot.getFrameId(name, pin.BODY)
             joint = robot.frames[frame].parentJoint
             moves = np.zeros(NV)
             moves[[robot.joints[j].idx_v for j in robot.supports[joint].tolist()[1:]]] = 1.0
             headers.append(np.concatenate([in_joint(robot, frame), moves]))
-            points.append(np.vstack(corners).reshape(-1))
+            points.append(box_corners(self.model, name).reshape(-1))
             placement = self.robot_data.oMi[joint]
             link = links[k.B_INTS * index : k.B_INTS * (index + 1)]
             link[k.B_ROT] = address(placement.rotation)
@@ -182,7 +187,6 @@ class PinocchioPlant:
                 arm.buffer, twin, arm.index, arm.frames, self._links, self._bodies
             )
         if self._fixture is not None:
-            pin.updateFramePlacements(self.robot, self.robot_data)
             self._apply_fixture(self._generalized, grip)
         k.twin_integrate(
             arm.buffer, twin, arm.index, arm.frames,
@@ -192,6 +196,7 @@ class PinocchioPlant:
     def _apply_fixture(self, generalized: np.ndarray, grip: float) -> None:
         """Step the scene's fixture twin; add its wrench at the TCP to joints and wrist."""
         data = self.robot_data
+        pin.updateFramePlacements(self.robot, data)
         tcp = data.oMf[self._tcp_id]
         if grip <= 0:
             self._grasp = 0.0

@@ -7,7 +7,6 @@ steps (so they describe the state reached, not the one before), and in a scene w
 joints do not start at address 0.
 """
 
-import mujoco
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -17,7 +16,7 @@ from lightrocks.adapters.arm import PinocchioArm, carrier
 from lightrocks.adapters.kernels import SLOW_EVERY
 from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.mujoco.plant import MujocoPlant
-from lightrocks.adapters.pinocchio.plant import PinocchioPlant
+from lightrocks.adapters.pinocchio.plant import PinocchioPlant, box_corners
 from lightrocks.adapters.robot_model import ARM_DOF, FINGER_JOINTS, NV, load_robot
 
 TOLERANCE = 1e-9
@@ -179,7 +178,7 @@ def test_the_twins_native_contacts_equal_the_penalty_law_computed_with_numpy() -
         placement = data.oMf[frame]
         jacobian = pin.getFrameJacobian(robot, data, frame, pin.LOCAL_WORLD_ALIGNED)
         hits = 0
-        for corner in _box_corners(plant.model, name):
+        for corner in box_corners(plant.model, name):
             point = placement.act(corner)
             inside = rotation.T @ (point - centre)
             depth = half - np.abs(inside)
@@ -202,17 +201,3 @@ def test_the_twins_native_contacts_equal_the_penalty_law_computed_with_numpy() -
     assert np.allclose(twin[k.T_GENERALIZED : k.T_GENERALIZED + NV], generalized, atol=1e-9)
     assert np.allclose(twin[k.T_CONTACT : k.T_CONTACT + 6], wrench, atol=1e-9)
     assert np.abs(wrench).max() > 1.0
-
-
-def _box_corners(model, body_name: str) -> list[np.ndarray]:
-    """The corners of a body's box geoms in the body frame, from the MJCF."""
-    body = model.body(body_name).id
-    corners = []
-    for g in range(model.ngeom):
-        if model.geom_bodyid[g] == body and model.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX:
-            rotation = np.zeros(9)
-            mujoco.mju_quat2Mat(rotation, model.geom_quat[g])
-            for signs in np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).T.reshape(-1, 3):
-                local = signs * model.geom_size[g]
-                corners.append(rotation.reshape(3, 3) @ local + model.geom_pos[g])
-    return corners
