@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed
 # warning about the project; it is filtered by its text and nothing else is.
 INSTALL := PYTHONWARNINGS="ignore:Editable installation" $(BIN)/python -m pip install --quiet
 
-.PHONY: demo test lint format bench pictures vsix clean
+.PHONY: demo test judges lint format bench pictures vsix clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -20,6 +20,11 @@ demo: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -n auto --dist worksteal
+
+# The outside judges of the suite (MatIEC, Beremiz, Chromium, the extension's node tooling),
+# made present as CI makes them; ../shared/tools must be beside the clone.
+judges:
+	bash .ci/judges
 
 bench: $(STAMP)
 	$(INSTALL) -e '.[dev,bench]'

@@ -41,7 +41,32 @@ def tally(record_property) -> Callable[..., None]:
     return add
 
 
+JUDGED = {
+    "MatIEC": ("tests/generators/test_matiec",),
+    "Beremiz": ("tests/generators/test_beremiz",),
+    "Chromium": ("tests/monitor/test_monitor_page",),
+    "TextMate grammar (node)": ("tests/vscode/",),
+}
+"""The tests each outside judge decides (see judges.py), counted in the summary."""
+
+
+def _judged(terminalreporter) -> None:
+    counts = {judge: Counter() for judge in JUDGED}
+    for outcome in ("passed", "failed", "skipped", "error"):
+        for report in terminalreporter.stats.get(outcome, []):
+            where = getattr(report, "nodeid", "")
+            for judge, prefixes in JUDGED.items():
+                if where.startswith(prefixes) and (report.when == "call" or outcome != "passed"):
+                    counts[judge][outcome] += 1
+    for judge, count in counts.items():
+        if not count:
+            continue
+        said = ", ".join(f"{count[o]} {o}" for o in ("passed", "failed", "skipped", "error"))
+        terminalreporter.write_line(f"judged by {judge}: {said}")
+
+
 def pytest_terminal_summary(terminalreporter) -> None:
+    _judged(terminalreporter)
     totals: dict[str, Counter] = {}
     for reports in terminalreporter.stats.values():
         for report in reports:

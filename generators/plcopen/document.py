@@ -259,4 +259,5 @@ def _configuration(parent: ET.Element, unit: Unit, interval: str) -> None:
     resource = _add(configuration, "resource", name=unit.resource)
     task = _add(resource, "task", name=unit.task, interval=interval, priority=1)
     _add(task, "pouInstance", name=unit.instance, typeName=unit.program.name)
-    _variables_plain(_add(configuration, "globalVars"), unit.globals)
+    if unit.globals:  # an empty section is "no variable declared" to MatIEC
+        _variables_plain(_add(configuration, "globalVars"), unit.globals)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import re
 
-from lightrocks.generators.sfc_iec61131.reserved import is_reserved
+from lightrocks.generators.sfc_iec61131.reserved import is_reserved, is_reserved_for_unit
 
 UNIT, VARIABLE, MACRO = "unit", "variable", "macro"
 
@@ -25,9 +25,10 @@ def legal(name: str) -> str:
     return f"x{text}" if text[0].isdigit() else text
 
 
-def _unreserved(name: str) -> str:
+def _unreserved(name: str, kind: str = VARIABLE) -> str:
     base = legal(name)
-    return f"{base}_1" if is_reserved(base) else base
+    reserved = is_reserved_for_unit if kind == UNIT else is_reserved
+    return f"{base}_1" if reserved(base) else base
 
 
 class Namer:
@@ -63,7 +64,7 @@ class Namer:
     def _take(self, wanted: str, kind: str) -> str:
         kinds = self.root._kinds
         avoid = set().union(*(names for other, names in kinds.items() if other != kind))
-        base = _unreserved(wanted)
+        base = _unreserved(wanted, kind)
         name, count = base, 1
         while name.upper() in self._used or name.upper() in avoid:
             count += 1

@@ -1,8 +1,16 @@
 """Names a generated identifier must not take (IEC 61131-3, 3rd edition), upper case.
 
 Keywords, elementary type names, standard functions and standard function blocks: a step,
-variable or block called ``MOVE`` or ``TON`` would shadow or clash with them.
+variable or block called ``MOVE`` or ``TON`` would shadow or clash with them. MatIEC's
+standard library (its ``lib/*.txt``) adds the typed variants of the functions (``ADD_INT``,
+``INT_TO_REAL``, ``MUX_DINT_BOOL``…), a few blocks of its own (``PID``, ``RAMP``…) and, for
+names of the unit (blocks, types, globals) alone, the variables of its blocks: with the
+forward references that Beremiz's build enables (``iec2c -p``), a block named ``Release``
+turns the input ``RELEASE`` of ``SEMA`` into a type name. The tests check this module against
+the library of the MatIEC in use.
 """
+
+import re
 
 KEYWORDS = frozenset(
     """
@@ -45,13 +53,38 @@ FUNCTIONS = frozenset(
 FUNCTION_BLOCKS = frozenset(
     """
     SR RS SEMA R_TRIG F_TRIG CTU CTD CTUD CTU_INT CTU_DINT CTU_LINT CTU_UDINT CTU_ULINT
-    CTD_INT CTD_DINT CTD_LINT CTD_UDINT CTD_ULINT CTUD_INT CTUD_DINT CTUD_LINT CTUD_ULINT
+    CTD_INT CTD_DINT CTD_LINT CTD_UDINT CTD_ULINT CTUD_INT CTUD_DINT CTUD_LINT CTUD_UDINT CTUD_ULINT
     TP TON TOF TONR TP_LTIME TON_LTIME TOF_LTIME RTC
     """.split()  # noqa: SIM905
 )
 
-RESERVED = KEYWORDS | TYPES | FUNCTIONS | FUNCTION_BLOCKS
+MATIEC_BLOCKS = frozenset("DERIVATIVE HYSTERESIS INTEGRAL PID RAMP DIVTIME MULTIME".split())  # noqa: SIM905
+
+MATIEC_VARIABLES = frozenset(
+    """
+    AUTO BUSY CD CDT CD_T CLAIM CLK CU CURRENT_TIME CU_T CV CYCLE DTERM EPS ERROR ET G IN IN0
+    IN1 IN2 ITERM K KP LD M MN MX OFFSET PDT PREV_IN PT PV Q1 QD QU Q_INTERNAL R1 RELEASE RUN
+    S1 SP START_TIME STATE TD TR X0 X1 X2 X3 XI XIN XIN1 XIN2 XOUT
+    """.split()  # noqa: SIM905
+)
+"""The variables of MatIEC's library blocks: forbidden as unit names only."""
+
+_TYPE = "(?:" + "|".join(sorted(TYPES, key=len, reverse=True)) + ")"
+_TYPED = "(?:" + "|".join(sorted(FUNCTIONS | MATIEC_BLOCKS, key=len, reverse=True)) + ")"
+TYPED_FUNCTION = re.compile(
+    rf"{_TYPE}_(?:BCD_)?TO_(?:BCD_)?{_TYPE}|{_TYPE}_TO_BCD|BCD_TO_{_TYPE}"
+    rf"|{_TYPED}_{_TYPE}(?:_{_TYPE})?"
+)
+"""The typed variants of the standard functions in MatIEC's library (``INT_TO_REAL``…)."""
+
+RESERVED = KEYWORDS | TYPES | FUNCTIONS | FUNCTION_BLOCKS | MATIEC_BLOCKS
 
 
 def is_reserved(name: str) -> bool:
-    return name.upper() in RESERVED
+    upper = name.upper()
+    return upper in RESERVED or TYPED_FUNCTION.fullmatch(upper) is not None
+
+
+def is_reserved_for_unit(name: str) -> bool:
+    """Reserved as the name of a block, type or global, where MatIEC's block variables count."""
+    return is_reserved(name) or name.upper() in MATIEC_VARIABLES

@@ -6,16 +6,17 @@ import shutil
 from pathlib import Path
 
 import pytest
+from judges import missing
 from plc import matiec_home
 
 
 @pytest.fixture(scope="module")
 def home() -> Path:
-    """MatIEC's folder, for the tests it judges; they skip with the reason where it or gcc
-    is absent."""
+    """MatIEC's folder, for the tests it judges (see ``judges.missing`` where it or gcc is
+    absent)."""
     found = matiec_home()
     if found is None:
-        pytest.skip("MatIEC not found: set MATIEC=<dir> or build it in /opt/matiec")
+        missing("MatIEC", "`make judges`, or ../shared/tools/matiec/build.sh DIR and MATIEC=DIR")
     if shutil.which("gcc") is None:
-        pytest.skip("gcc not found")
+        missing("gcc", "apt-get install gcc")
     return found

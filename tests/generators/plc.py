@@ -1,7 +1,10 @@
 """MatIEC as the judge of the SFC target: compile, link, and step a unit against a script.
 
-MatIEC (the Beremiz project's IEC 61131-3 compiler) is found through ``MATIEC=<dir>`` or at
-``/opt/matiec``: ``<dir>/iec2c`` and ``<dir>/lib``. The step harness writes a C driver that
+MatIEC (the Beremiz project's IEC 61131-3 compiler) is found through ``MATIEC=<dir>``, in the
+judges' folder that ``make judges`` fills, or at ``/opt/matiec``: ``<dir>/iec2c`` and
+``<dir>/lib``. Every file is compiled twice: with MatIEC's defaults and with the options
+Beremiz's build passes (``-f -l -p``), under which the names of MatIEC's standard library are
+in scope of the user's POUs. The step harness writes a C driver that
 emulates the devices of the cell exactly as the Python dry run does (a command settles after
 ``SETTLE_CYCLES`` scans, or faults, or never ends; sensor values can be pinned), runs the
 compiled program scan by scan, and prints every step that becomes active.
@@ -9,11 +12,15 @@ compiled program scan by scan, and prints every step that becomes active.
 
 from __future__ import annotations
 
+import functools
 import os
+import re
 import resource
 import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from judges import JUDGES
 
 from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.generators.sfc_iec61131.build import Block, Unit
@@ -21,15 +28,26 @@ from lightrocks.workbench.app.loading import load_component
 from lightrocks.workbench.app.run import drive
 from lightrocks.workbench.app.values import parse_delay
 
-DEFAULT_HOME = Path("/opt/matiec")
+PLACES = (JUDGES / "matiec", Path("/opt/matiec"))
+BEREMIZ_OPTIONS = ("-f", "-l", "-p")
+"""What Beremiz's build passes to iec2c (ProjectController's iec2c_cfg)."""
 CYCLE_MS = 1
 SETTLE_CYCLES = 100  # the dry run's 0.1 s command duration at 1 ms per scan
 MEMORY_LIMIT = 2 << 30
 
 
 def matiec_home() -> Path | None:
-    home = Path(os.environ.get("MATIEC", DEFAULT_HOME))
-    return home if (home / "iec2c").is_file() and (home / "lib").is_dir() else None
+    given = os.environ.get("MATIEC")
+    places = [Path(given)] if given else PLACES
+    return next((h for h in places if (h / "iec2c").is_file() and (h / "lib").is_dir()), None)
+
+
+@functools.cache
+def beremiz_options(home: Path) -> tuple[str, ...]:
+    """Those of Beremiz's options that this iec2c lists in its help."""
+    shown = subprocess.run([str(home / "iec2c"), "-h"], capture_output=True, text=True).stdout
+    listed = set(re.findall(r"^ (-\w) :", shown, flags=re.MULTILINE))
+    return tuple(o for o in BEREMIZ_OPTIONS if o in listed)
 
 
 def _limited() -> None:
@@ -37,12 +55,26 @@ def _limited() -> None:
 
 
 def iec2c(home: Path, source: Path, out: Path) -> subprocess.CompletedProcess:
-    """Compile one ST file; MatIEC loops on some malformed input, hence time and memory caps."""
+    """Compile one ST file into ``out`` with MatIEC's defaults and, into ``out/beremiz``, with
+    Beremiz's options: the first run that fails (its output says which), else the first."""
+    default = _compile(home, (), source, out)
+    if default.returncode != 0:
+        return default
+    beremiz = _compile(home, beremiz_options(home), source, out / "beremiz")
+    return beremiz if beremiz.returncode != 0 else default
+
+
+def _compile(
+    home: Path, options: tuple[str, ...], source: Path, out: Path
+) -> subprocess.CompletedProcess:
+    """One iec2c run; MatIEC loops on some malformed input, hence time and memory caps."""
     out.mkdir(parents=True, exist_ok=True)
-    command = [str(home / "iec2c"), "-I", str(home / "lib"), "-T", str(out), str(source)]
-    return subprocess.run(
+    command = [str(home / "iec2c"), *options, "-I", str(home / "lib"), "-T", str(out), str(source)]
+    done = subprocess.run(
         command, capture_output=True, text=True, timeout=120, preexec_fn=_limited, check=False
     )
+    done.stdout = f"iec2c {' '.join(options) or 'without options'}: {done.stdout}"
+    return done
 
 
 def gcc(home: Path, out: Path, driver: str, exe: Path) -> subprocess.CompletedProcess:

