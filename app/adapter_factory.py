@@ -8,9 +8,9 @@ from collections.abc import Callable
 from importlib.metadata import entry_points
 from typing import Any
 
-from lightrocks.workbench.app.errors import RunError
-from lightrocks.workbench.app.script import Script
-from lightrocks.workbench.app.values import Noise
+from lightrocks.app.errors import RunError
+from lightrocks.app.script import Script
+from lightrocks.app.values import Noise
 
 
 def adapter_factory(name: str) -> Callable[..., Any]:

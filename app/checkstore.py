@@ -10,7 +10,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from lightrocks.workbench.app.cachedir import cache_root, put_json
+from lightrocks.app.cachedir import cache_root, put_json
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 from lightrocks.workbench.reads import Reads
 

@@ -12,8 +12,8 @@ from importlib.util import find_spec
 from pathlib import Path
 from typing import Any
 
+from lightrocks.app import checkstore
 from lightrocks.workbench import checkcache, report
-from lightrocks.workbench.app import checkstore
 from lightrocks.workbench.diagnostics import Severity
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
@@ -288,13 +288,13 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
 def cmd_run(args: argparse.Namespace) -> int:
     from functools import partial
 
-    from lightrocks.workbench.app import display, values
-    from lightrocks.workbench.app.adapter_factory import adapter_options
-    from lightrocks.workbench.app.errors import ModelError, RunError
-    from lightrocks.workbench.app.loading import load_component
-    from lightrocks.workbench.app.run import run_component, run_header, success_outcome
-    from lightrocks.workbench.app.script import read_script
-    from lightrocks.workbench.app.seeds import run_seeds
+    from lightrocks.app import display, values
+    from lightrocks.app.adapter_factory import adapter_options
+    from lightrocks.app.errors import ModelError, RunError
+    from lightrocks.app.loading import load_component
+    from lightrocks.app.run import run_component, run_header, success_outcome
+    from lightrocks.app.script import read_script
+    from lightrocks.app.seeds import run_seeds
     from lightrocks.workbench.generators import GenerationError
 
     model = statechart_file(args.model)
@@ -403,11 +403,11 @@ def _configure_sweep(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_sweep)
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from lightrocks.workbench.app import display, sweep, values
-    from lightrocks.workbench.app.adapter_factory import adapter_options
-    from lightrocks.workbench.app.errors import ModelError, RunError
-    from lightrocks.workbench.app.loading import load_component
-    from lightrocks.workbench.app.run import success_outcome
+    from lightrocks.app import display, sweep, values
+    from lightrocks.app.adapter_factory import adapter_options
+    from lightrocks.app.errors import ModelError, RunError
+    from lightrocks.app.loading import load_component
+    from lightrocks.app.run import success_outcome
     from lightrocks.workbench.files import write_tree
     from lightrocks.workbench.generators import GenerationError
 
@@ -461,7 +461,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
 def _monitor(args: argparse.Namespace, model: Path, search_path: list[Path], name: str) -> Any:
     """Start the page's server and tell where it is; the watch that feeds and controls it."""
-    from lightrocks.workbench.app.monitor.watch import monitor_for
+    from lightrocks.app.monitor.watch import monitor_for
 
     address = _monitor_address(args.monitor)
     monitor, watch = monitor_for(
@@ -472,7 +472,7 @@ def _monitor(args: argparse.Namespace, model: Path, search_path: list[Path], nam
 
 
 def _monitor_address(text: str) -> tuple[str, int]:
-    from lightrocks.workbench.app.monitor.server import parse_address
+    from lightrocks.app.monitor.server import parse_address
 
     if any(find_spec(m) is None for m in ("starlette", "uvicorn", "websockets")):
         raise UsageError("--monitor needs its web server: pip install 'lightrocks[monitor]'")
@@ -505,8 +505,8 @@ def cmd_replay(args: argparse.Namespace) -> int:
     """Serve the page with a time slider over the recorded run until Ctrl-C."""
     import threading
 
-    from lightrocks.workbench.app.monitor.traces import TraceError, header, read_trace, task_name
-    from lightrocks.workbench.app.monitor.watch import replay_for
+    from lightrocks.app.monitor.traces import TraceError, header, read_trace, task_name
+    from lightrocks.app.monitor.watch import replay_for
     from lightrocks.workbench.generators import GenerationError
 
     trace = existing_paths([args.trace])[0]
@@ -541,8 +541,8 @@ def _configure_plot(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_plot)
 def cmd_plot(args: argparse.Namespace) -> int:
-    from lightrocks.workbench.app.monitor.plot import FORMATS, plot
-    from lightrocks.workbench.app.monitor.traces import TraceError
+    from lightrocks.app.monitor.plot import FORMATS, plot
+    from lightrocks.app.monitor.traces import TraceError
 
     if find_spec("matplotlib") is None:
         raise UsageError("plot needs matplotlib: pip install 'lightrocks[plot]'")
@@ -598,7 +598,7 @@ def _configure_lsp(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_lsp)
 def cmd_lsp(args: argparse.Namespace) -> int:
-    from lightrocks.workbench.app.lsp.server import main as serve  # only editors need pygls
+    from lightrocks.app.lsp.server import main as serve  # only editors need pygls
 
     return serve()
 
@@ -642,8 +642,8 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def keep_parses_on_disk() -> None:
     """Parse results outlive the process: the next run does not parse an unchanged file."""
+    from lightrocks.app import parsestore
     from lightrocks.workbench import parsecache
-    from lightrocks.workbench.app import parsestore
 
     parsecache.use_store(parsestore.DiskStore())
 

@@ -9,8 +9,8 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
-from lightrocks.workbench.app.run import RunResult
-from lightrocks.workbench.app.seeds import wilson
+from lightrocks.app.run import RunResult
+from lightrocks.app.seeds import wilson
 from lightrocks.workbench.report import printable
 
 _SCALES = {

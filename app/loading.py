@@ -1,6 +1,6 @@
 """Check → generate → cache → import: the generated class of a model's statechart.
 
-Generated packages live in the run cache (:mod:`workbench.app.cache`), so an unchanged model
+Generated packages live in the run cache (:mod:`app.cache`), so an unchanged model
 is generated once. Each entry is verified before it is imported with importlib, all its
 modules at once and without writing bytecode beside them; model text itself is never
 executed.
@@ -15,14 +15,14 @@ from collections.abc import Sequence
 from pathlib import Path
 from types import ModuleType
 
+from lightrocks.app import cache
+from lightrocks.app.cachedir import cache_root
+from lightrocks.app.errors import ModelError, RunError
 from lightrocks.generators.python import GENERATOR
 from lightrocks.generators.python.generator import module_path
 from lightrocks.generators.python.names import identifier
 from lightrocks.metamodel import ast
 from lightrocks.workbench import report
-from lightrocks.workbench.app import cache
-from lightrocks.workbench.app.cachedir import cache_root
-from lightrocks.workbench.app.errors import ModelError, RunError
 from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.generators import GenerationRequest, run_generator
 

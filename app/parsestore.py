@@ -13,9 +13,9 @@ from dataclasses import fields, is_dataclass
 from pathlib import Path
 from typing import Any
 
+from lightrocks.app.cachedir import cache_root, put_text
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem, paused_gc
-from lightrocks.workbench.app.cachedir import cache_root, put_text
 
 CLASSES = {
     name: value

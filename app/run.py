@@ -10,11 +10,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from lightrocks.workbench.app.adapter_factory import adapter_for, adapter_options, scene_of
-from lightrocks.workbench.app.errors import ModelError, RunError
-from lightrocks.workbench.app.loading import load_component
-from lightrocks.workbench.app.script import Script
-from lightrocks.workbench.app.values import Noise, parameters, parse_delay
+from lightrocks.app.adapter_factory import adapter_for, adapter_options, scene_of
+from lightrocks.app.errors import ModelError, RunError
+from lightrocks.app.loading import load_component
+from lightrocks.app.script import Script
+from lightrocks.app.values import Noise, parameters, parse_delay
 
 
 def success_outcome(cls: type, chosen: str | None = None) -> str | None:
@@ -72,9 +72,9 @@ def drive(
     The binding is checked before the trace file is opened, so a run that cannot start
     leaves no file behind. A cell that does not fit the adapter is the model's mistake.
     """
+    from lightrocks.app.monitor.sampling import SampledAdapter
     from lightrocks.runtime import BindingError, Trace
     from lightrocks.runtime.binding import bind
-    from lightrocks.workbench.app.monitor.sampling import SampledAdapter
 
     chart = cls(**params)
     steps = [parse_delay(e) if e.startswith("+") else e for e in events]

@@ -9,8 +9,8 @@ import json
 from pathlib import Path
 from typing import Any
 
+from lightrocks.app.errors import RunError
 from lightrocks.runtime.contract import TIMEOUT
-from lightrocks.workbench.app.errors import RunError
 
 FAULT = "error"  # a scripted adapter fault
 

@@ -10,9 +10,9 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
-from lightrocks.workbench.app.run import RunResult, run_once
-from lightrocks.workbench.app.script import Script
-from lightrocks.workbench.app.values import Noise
+from lightrocks.app.run import RunResult, run_once
+from lightrocks.app.script import Script
+from lightrocks.app.values import Noise
 
 
 def seed_trace(trace: Path | None, seed: int) -> Path | None:

@@ -15,10 +15,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from lightrocks.workbench.app.errors import RunError
-from lightrocks.workbench.app.run import RunResult, run_once
-from lightrocks.workbench.app.seeds import wilson
-from lightrocks.workbench.app.values import Noise
+from lightrocks.app.errors import RunError
+from lightrocks.app.run import RunResult, run_once
+from lightrocks.app.seeds import wilson
+from lightrocks.app.values import Noise
 
 
 @dataclass(frozen=True)

@@ -7,11 +7,11 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from lightrocks.app.errors import RunError
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.metamodel.units import ANGLE, LENGTH, Dimension, UnitError, lookup
-from lightrocks.workbench.app.errors import RunError
 
 Noise = tuple[float, float]
 """Perception noise: position sigma [m], rotation sigma [rad]."""

@@ -24,11 +24,11 @@ import time
 from pathlib import Path
 
 from lightrocks.adapters.scenes import goal_met
-from lightrocks.workbench.app.errors import RunError
-from lightrocks.workbench.app.run import RunResult
-from lightrocks.workbench.app.seeds import run_seeds, wilson
-from lightrocks.workbench.app.sweep import GridPoint, PointSummary, plot_png
-from lightrocks.workbench.app.values import Noise, parse_noise
+from lightrocks.app.errors import RunError
+from lightrocks.app.run import RunResult
+from lightrocks.app.seeds import run_seeds, wilson
+from lightrocks.app.sweep import GridPoint, PointSummary, plot_png
+from lightrocks.app.values import Noise, parse_noise
 
 ROOT = Path(__file__).resolve().parents[1]
 GOALS = ((2e-3, math.radians(2), 0.99), (3e-3, math.radians(3), 0.95))

@@ -63,7 +63,7 @@ def cli_seconds(folder: Path, cache: Path) -> float:
     """CPU time of one `lightrocks check` of ``folder`` in a new process."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     subprocess.run(
-        [sys.executable, "-m", "lightrocks.workbench.app.cli", "check", str(folder)],
+        [sys.executable, "-m", "lightrocks.app.cli", "check", str(folder)],
         env={**os.environ, "XDG_CACHE_HOME": str(cache)},
         check=True,
         stdout=subprocess.DEVNULL,

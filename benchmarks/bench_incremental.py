@@ -20,8 +20,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from lightrocks.app.parsestore import DiskStore
 from lightrocks.workbench import parsecache
-from lightrocks.workbench.app.parsestore import DiskStore
 from lightrocks.workbench.incremental import IncrementalCheck
 
 PACKAGES, CHARTS = 100, 9
@@ -62,7 +62,7 @@ def write_workspace(root: Path) -> None:
 def timed_cli(root: Path, cache: Path) -> float:
     start = time.perf_counter()
     subprocess.run(
-        [sys.executable, "-m", "lightrocks.workbench.app.cli", "check", str(root)],
+        [sys.executable, "-m", "lightrocks.app.cli", "check", str(root)],
         env={**os.environ, "XDG_CACHE_HOME": str(cache)},
         check=False,
         stdout=subprocess.DEVNULL,

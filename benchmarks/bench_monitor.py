@@ -18,9 +18,9 @@ import sys
 import time
 from pathlib import Path
 
-from lightrocks.workbench.app.loading import load_component
-from lightrocks.workbench.app.monitor.watch import monitor_for
-from lightrocks.workbench.app.run import run_component
+from lightrocks.app.loading import load_component
+from lightrocks.app.monitor.watch import monitor_for
+from lightrocks.app.run import run_component
 
 ROOT = Path(__file__).resolve().parents[1]
 TASK = ROOT / "examples/din_rail/tasks/AssembleRail.lr"

@@ -37,8 +37,8 @@ from sismic.io import import_from_yaml
 from statemachine.io import create_machine_class_from_definition
 from transitions.extensions import HierarchicalMachine
 
+from lightrocks.app.loading import component_class, generated_package
 from lightrocks.runtime import Trace
-from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
 GOAL = 20.0

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from distributed import Client, LocalCluster
 
-from lightrocks.workbench.app.sweep import grid_points, sweep
+from lightrocks.app.sweep import grid_points, sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 MODEL = ROOT / "examples/din_rail/tasks/AssembleRail.lr"

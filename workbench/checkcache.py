@@ -7,7 +7,7 @@ result, so an edit, a new model file or package folder, or other checking code i
 
 Two layers: whole check contexts in memory for the process (the language server, repeated
 checks from Python), and findings on disk between processes when a :class:`Store` is
-installed (the command line installs the one of :mod:`lightrocks.workbench.app.checkstore`).
+installed (the command line installs the one of :mod:`lightrocks.app.checkstore`).
 """
 
 from __future__ import annotations
@@ -96,19 +96,27 @@ def remember(
 
 @cache
 def code_digest() -> str:
-    """A digest of the code that decides findings: the workbench, the metamodel, and every
-    registered language and extension (its entry point, distribution version and sources).
-    An editable install changes the sources without changing any version."""
+    """A digest of the code that decides findings (see :func:`checking_code`): an editable
+    install changes the sources without changing any version."""
     digest = hashlib.blake2b(digest_size=20)
-    places = {Path(__file__).resolve().parent.parent / name for name in _CHECKING_CODE}
+    places = checking_code()
     for group in GROUPS:
         for entry in sorted(entry_points(group=group), key=lambda e: (e.name, e.value)):
             release = entry.dist.version if entry.dist is not None else ""
             digest.update(f"{group}\x00{entry.name}\x00{entry.value}\x00{release}\x00".encode())
-            places.add(_sources(entry.module))
     digest.update(_version().encode() + b"\x00")
     digest.update(sources_digest(places, (".py", ".tx")).encode())
     return digest.hexdigest()
+
+
+def checking_code() -> set[Path]:
+    """Where the code that decides findings lives: the kernel, the metamodel, and every
+    registered language and extension. The application floor is not part of it, so an edit
+    of the command line or the monitor keeps every cached finding."""
+    places = {Path(__file__).resolve().parent.parent / name for name in _CHECKING_CODE}
+    for group in GROUPS:
+        places |= {_sources(entry.module) for entry in entry_points(group=group)}
+    return places
 
 
 def _sources(module: str) -> Path:

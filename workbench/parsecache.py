@@ -3,7 +3,7 @@
 Units are immutable dataclasses, so one parsed unit can serve every later check of the same
 text. Results live in memory for the process (the language server re-checks on every
 keystroke) and, when a :class:`Store` is installed, between processes (the CLI installs the
-on-disk store of :mod:`lightrocks.workbench.app.parsestore`). The key covers the installed
+on-disk store of :mod:`lightrocks.app.parsestore`). The key covers the installed
 version, a digest of the grammar and of the code that builds units, the language, the file
 name shown in positions and the text, so no stale result is ever returned.
 """

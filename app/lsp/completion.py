@@ -6,8 +6,8 @@ import re
 
 from lsprotocol import types as lsp
 
+from lightrocks.app.lsp.index import FileIndex, state_kind
 from lightrocks.metamodel.units import known_units
-from lightrocks.workbench.app.lsp.index import FileIndex, state_kind
 
 KEYWORDS = (
     "package", "import", "statechart", "state", "initial", "final", "parameters", "entry",

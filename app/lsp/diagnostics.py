@@ -6,7 +6,7 @@ import re
 
 from lsprotocol import types as lsp
 
-from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.app.lsp.text import Text
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
 SEVERITIES = {

@@ -7,11 +7,11 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
+from lightrocks.app.lsp.index import Declared, FileIndex, Index, Occurrence
+from lightrocks.app.lsp.text import Text
 from lightrocks.languages.domain.types import Types, describe
 from lightrocks.metamodel import ast, printer
 from lightrocks.metamodel.units import UnitError, lookup
-from lightrocks.workbench.app.lsp.index import Declared, FileIndex, Index, Occurrence
-from lightrocks.workbench.app.lsp.text import Text
 from lightrocks.workbench.workspace import Workspace
 
 QUANTITY = re.compile(

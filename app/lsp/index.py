@@ -18,10 +18,10 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
+from lightrocks.app.lsp.spans import span
+from lightrocks.app.lsp.text import Text, contains
 from lightrocks.languages.domain.types import UNKNOWN, Type, describe
 from lightrocks.metamodel import ast, printer
-from lightrocks.workbench.app.lsp.spans import span
-from lightrocks.workbench.app.lsp.text import Text, contains
 from lightrocks.workbench.extensions import symbol_kind
 from lightrocks.workbench.workspace import Loaded, Workspace, shown_name
 

@@ -8,8 +8,8 @@ from pathlib import Path
 from lsprotocol import types as lsp
 from pygls.uris import from_fs_path
 
-from lightrocks.workbench.app.lsp.index import FileIndex, Index, Key, Occurrence
-from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.app.lsp.index import FileIndex, Index, Key, Occurrence
+from lightrocks.app.lsp.text import Text
 
 IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 RENAMEABLE = {"state", "parameter", "statechart", "start", "end", "pseudostate", "event"}

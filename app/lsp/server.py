@@ -14,13 +14,13 @@ from lsprotocol import types as lsp
 from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
+from lightrocks.app.lsp import completion as completing
+from lightrocks.app.lsp import diagnostics, navigation
+from lightrocks.app.lsp.hover import expression_hover, quantity_hover
+from lightrocks.app.lsp.hover import hover as describe
+from lightrocks.app.lsp.index import Index
+from lightrocks.app.lsp.text import Text
 from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.workbench.app.lsp import completion as completing
-from lightrocks.workbench.app.lsp import diagnostics, navigation
-from lightrocks.workbench.app.lsp.hover import expression_hover, quantity_hover
-from lightrocks.workbench.app.lsp.hover import hover as describe
-from lightrocks.workbench.app.lsp.index import Index
-from lightrocks.workbench.app.lsp.text import Text
 from lightrocks.workbench.diagnostics import Diagnostic
 from lightrocks.workbench.incremental import IncrementalCheck
 from lightrocks.workbench.languages import language_for

@@ -11,8 +11,8 @@ import re
 
 from lsprotocol import types as lsp
 
+from lightrocks.app.lsp.text import BRACKET_OR_SKIPPED, WORD, Text
 from lightrocks.metamodel import ast
-from lightrocks.workbench.app.lsp.text import BRACKET_OR_SKIPPED, WORD, Text
 
 NUMBER = re.compile(r"\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
 STRING = re.compile(r"\"(?:[^\"\\\n]|\\.)*\"?|'(?:[^'\\\n]|\\.)*'?")

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from lightrocks.workbench.app.monitor.traces import read_trace
+from lightrocks.app.monitor.traces import read_trace
 
 FORMATS = (".png", ".html")
 LAYERS = ("skill", "action")

@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 from importlib.resources import files
 from typing import Any
 
-from lightrocks.workbench.app.monitor.control import RunControl
-from lightrocks.workbench.app.monitor.feed import Feed
+from lightrocks.app.monitor.control import RunControl
+from lightrocks.app.monitor.feed import Feed
 
 PUSH_PERIOD = 0.1
 """Seconds between two pushes of new records to a page."""
@@ -55,7 +55,7 @@ class Monitor:
             given = request.query_params.get("token", "")
             return secrets.compare_digest(given.encode(), self.token.encode())
 
-        page = files("lightrocks.workbench.app.monitor.page")
+        page = files("lightrocks.app.monitor.page")
 
         async def index(request: Request) -> Response:
             if not allowed(request):

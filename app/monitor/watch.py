@@ -7,10 +7,10 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from lightrocks.app.monitor.control import RunControl
+from lightrocks.app.monitor.feed import Feed
+from lightrocks.app.monitor.server import Monitor
 from lightrocks.runtime import Abort, Trace
-from lightrocks.workbench.app.monitor.control import RunControl
-from lightrocks.workbench.app.monitor.feed import Feed
-from lightrocks.workbench.app.monitor.server import Monitor
 
 DEPTH = "3"
 """Task, skill and action: the levels the page highlights."""

@@ -1,13 +1,13 @@
 """Registration with textX's language registry, so that ``textx check`` knows ``.lrd`` files
-and runs the CoCos on them (see :mod:`workbench.textx_check`)."""
+and runs the CoCos on them (see :mod:`app.textx.check`)."""
 
 from functools import cache
 
 from textx import language
 
+from lightrocks.app.textx.check import with_cocos
 from lightrocks.languages.domain.syntax import FRAGMENTS, GRAMMAR
 from lightrocks.metamodel.grammar import build_metamodel
-from lightrocks.workbench.textx_check import with_cocos
 
 
 @language("lightrocks-domain", "*.lrd")

@@ -15,6 +15,7 @@ from typing import Any
 from textx import TextXError, generator
 from textx.registration import GeneratorParam
 
+from lightrocks.app.textx.check import model_path
 from lightrocks.workbench import report
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import (
@@ -24,7 +25,6 @@ from lightrocks.workbench.generators import (
     run_generator,
     write_all,
 )
-from lightrocks.workbench.textx_check import model_path
 
 PATH = GeneratorParam("path", "model-path folders of imported packages", mandatory=False)
 RENDER = GeneratorParam("render", "also draw each .dot file: svg or png", mandatory=False)

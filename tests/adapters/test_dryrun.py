@@ -11,8 +11,8 @@ import pinocchio as pin
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.app.cli import main
 from lightrocks.runtime.contract import StopCondition, Vector3
-from lightrocks.workbench.app.cli import main
 
 
 class Robot:

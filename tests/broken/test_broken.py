@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -267,7 +267,7 @@ def test_check_subprocess_reports_broken_input(name: str, tmp_path: Path) -> Non
     case.break_it(root)
     before = snapshot(tmp_path)
     result = subprocess.run(
-        [sys.executable, "-m", "lightrocks.workbench.app.cli", "check", str(root)],
+        [sys.executable, "-m", "lightrocks.app.cli", "check", str(root)],
         capture_output=True,
         text=True,
         cwd=tmp_path,

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 from lightrocks.workbench.check import all_cocos
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -95,7 +95,7 @@ def test_usage_error_exits_2_as_a_process() -> None:
         [
             sys.executable,
             "-m",
-            "lightrocks.workbench.app.cli",
+            "lightrocks.app.cli",
             "check",
             "--no-such-option",
             str(TURNSTILE),

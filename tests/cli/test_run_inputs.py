@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

@@ -11,11 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
-from lightrocks.workbench.app.display import format_measurement
-from lightrocks.workbench.app.errors import RunError
-from lightrocks.workbench.app.seeds import seed_trace, wilson
-from lightrocks.workbench.app.values import parse_noise, parse_value
+from lightrocks.app.cli import main
+from lightrocks.app.display import format_measurement
+from lightrocks.app.errors import RunError
+from lightrocks.app.seeds import seed_trace, wilson
+from lightrocks.app.values import parse_noise, parse_value
 
 ROOT = Path(__file__).resolve().parents[2]
 SCREW_TASK = str(ROOT / "examples" / "screwing" / "tasks" / "ScrewTask.lr")

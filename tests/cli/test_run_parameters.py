@@ -10,11 +10,11 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
-from lightrocks.workbench.app.errors import RunError
-from lightrocks.workbench.app.loading import load_component
-from lightrocks.workbench.app.run import run_once
-from lightrocks.workbench.app.values import parameters
+from lightrocks.app.cli import main
+from lightrocks.app.errors import RunError
+from lightrocks.app.loading import load_component
+from lightrocks.app.run import run_once
+from lightrocks.app.values import parameters
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from lightrocks.adapters import video
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
 OPEN = [str(ROOT / "examples" / "screwing" / "actions" / "OpenGripper.lr")]

@@ -16,10 +16,10 @@ import pyarrow.parquet as pq
 import pytest
 from distributed import Client, LocalCluster
 
-from lightrocks.workbench.app.cli import main
-from lightrocks.workbench.app.errors import RunError
-from lightrocks.workbench.app.seeds import wilson
-from lightrocks.workbench.app.sweep import grid_points, parse_grid, split_values, sweep
+from lightrocks.app.cli import main
+from lightrocks.app.errors import RunError
+from lightrocks.app.seeds import wilson
+from lightrocks.app.sweep import grid_points, parse_grid, split_values, sweep
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -187,7 +187,7 @@ def _interruptible() -> None:
 def test_ctrl_c_cancels_the_sweep_and_writes_nothing(tmp_path: Path):
     output = tmp_path / "cancelled"
     command = [
-        *(sys.executable, "-m", "lightrocks.workbench.app.cli", "sweep", str(RAIL_TASK)),
+        *(sys.executable, "-m", "lightrocks.app.cli", "sweep", str(RAIL_TASK)),
         *("--path", str(EXAMPLES), "--adapter", "dryrun", "--seeds", "400", "--workers", "2"),
         *("-o", str(output)),
     ]
@@ -203,7 +203,7 @@ def test_ctrl_c_cancels_the_sweep_and_writes_nothing(tmp_path: Path):
 
 
 def test_sweep_without_its_extra_names_the_install(gate: Path, monkeypatch, capsys):
-    from lightrocks.workbench.app import cli
+    from lightrocks.app import cli
 
     real = cli.find_spec
     monkeypatch.setattr(cli, "find_spec", lambda name: None if name == "pyarrow" else real(name))

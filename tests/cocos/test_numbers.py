@@ -11,10 +11,10 @@ from pathlib import Path
 
 import pytest
 
+from lightrocks.app.cli import main
 from lightrocks.languages.domain.types import describe
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.metamodel import ast
-from lightrocks.workbench.app.cli import main
 from lightrocks.workbench.check import check
 
 MARK = "@@"

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 from lightrocks.workbench.check import check
 
 CELL = """package t;

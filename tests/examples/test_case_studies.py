@@ -15,8 +15,8 @@ from pathlib import Path
 import pytest
 
 from lightrocks.adapters.scenes import SCREW_AXIS_XY, SCREW_START, SCREW_TARGET_DEPTH, goal_met
-from lightrocks.workbench.app.run import RunResult, run_once
-from lightrocks.workbench.app.seeds import run_seeds
+from lightrocks.app.run import RunResult, run_once
+from lightrocks.app.seeds import run_seeds
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

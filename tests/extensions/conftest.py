@@ -38,7 +38,7 @@ class Environment:
         )
 
     def lightrocks(self, *args: str) -> subprocess.CompletedProcess:
-        return self.run_python("-m", "lightrocks.workbench.app.cli", *args)
+        return self.run_python("-m", "lightrocks.app.cli", *args)
 
     def pip(self, *args: str) -> None:
         result = self.run_python("-m", "pip", "--quiet", *args)

@@ -48,8 +48,8 @@ def test_a_count_of_a_length_is_found(installed: Environment, tmp_path: Path) ->
 EDITOR_INDEX = """
 import sys
 from pathlib import Path
-from lightrocks.workbench.app.lsp.index import Index
-from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.app.lsp.index import Index
+from lightrocks.app.lsp.text import Text
 from lightrocks.workbench.incremental import IncrementalCheck
 models, examples, skill = (Path(a).resolve() for a in sys.argv[1:])
 checked = IncrementalCheck([models], [examples])

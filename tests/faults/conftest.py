@@ -19,8 +19,8 @@ from typing import Any
 
 import pytest
 
+from lightrocks.app.loading import component_class, generated_package
 from lightrocks.workbench import report
-from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
 DEADLINE = 60.0
@@ -91,7 +91,7 @@ def cli(*args: str, cwd: Path, timeout: float = DEADLINE) -> subprocess.Complete
     """``lightrocks ARGS`` in a subprocess; a run that does not end in time fails the test.
     The run cache goes below ``cwd``."""
     env = {**os.environ, "XDG_CACHE_HOME": str(cwd / "cache"), "PYTHONIOENCODING": "utf-8"}
-    command = [sys.executable, "-m", "lightrocks.workbench.app.cli", *args]
+    command = [sys.executable, "-m", "lightrocks.app.cli", *args]
     try:
         return subprocess.run(
             command, cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 from lightrocks.workbench.files import JOURNAL, STAGING, recover
 
 from .conftest import DEADLINE
@@ -23,7 +23,7 @@ KILLED = """
 import os, signal, sys, types
 from pathlib import Path
 from lightrocks.workbench import files
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 calls = 0
 

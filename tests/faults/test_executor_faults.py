@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.app.cli import main
 from lightrocks.runtime.contract import AdapterError
-from lightrocks.workbench.app.cli import main
 
 from .conftest import cli, trace_records, within, write_models
 

@@ -14,9 +14,9 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from lightrocks.app.loading import component_class, generated_package
 from lightrocks.generators.python import generator
 from lightrocks.runtime import ActionComponent, CompositeComponent
-from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
 from .conftest import within

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 from lightrocks.workbench.report import printable
 
 TITLE = "\x1b]0;owned\x07"  # sets the terminal's title when printed raw

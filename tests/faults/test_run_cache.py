@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app import cache, cachedir
-from lightrocks.workbench.app.loading import component_class, generated_package
+from lightrocks.app import cache, cachedir
+from lightrocks.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
 from .conftest import DEADLINE, cli, within, write_models

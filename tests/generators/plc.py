@@ -23,10 +23,10 @@ from pathlib import Path
 from judges import JUDGES
 
 from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.app.loading import load_component
+from lightrocks.app.run import drive
+from lightrocks.app.values import parse_delay
 from lightrocks.generators.sfc_iec61131.build import Block, Unit
-from lightrocks.workbench.app.loading import load_component
-from lightrocks.workbench.app.run import drive
-from lightrocks.workbench.app.values import parse_delay
 
 PLACES = (JUDGES / "matiec", Path("/opt/matiec"))
 BEREMIZ_OPTIONS = ("-f", "-l", "-p")

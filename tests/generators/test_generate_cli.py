@@ -7,8 +7,8 @@ import os
 import pytest
 from generation import EXAMPLES, SCREW_IN, SCREW_TASK
 
+from lightrocks.app.cli import main
 from lightrocks.workbench import files
-from lightrocks.workbench.app.cli import main
 
 
 def _generate(output, *extra: str) -> int:

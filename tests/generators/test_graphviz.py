@@ -9,8 +9,8 @@ import pytest
 from generation import EXAMPLES, SCREW_IN, SCREW_TASK, assert_golden, generate
 
 import lightrocks.generators.graphviz.rendering as rendering
+from lightrocks.app.cli import main
 from lightrocks.generators.graphviz.graph import quote
-from lightrocks.workbench.app.cli import main
 from lightrocks.workbench.generators import GenerationError
 
 STATECHARTS = sorted(EXAMPLES.rglob("*.lr"))

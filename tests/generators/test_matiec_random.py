@@ -21,10 +21,10 @@ from statecharts.random_charts import TICK, random_chart
 from statecharts.sismic_chart import python
 from test_matiec import _unit
 
+from lightrocks.app.loading import load_component
+from lightrocks.app.run import drive
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
-from lightrocks.workbench.app.loading import load_component
-from lightrocks.workbench.app.run import drive
 from lightrocks.workbench.generators import GenerationError
 
 CHARTS = 6

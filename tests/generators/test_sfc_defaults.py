@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from generation import generate
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 CHART = """package t;
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 TURNSTILE = Path(__file__).resolve().parents[2] / "examples" / "plain" / "Turnstile.lr"
 

@@ -10,10 +10,11 @@ from pathlib import Path
 
 import pytest
 
+from lightrocks.app import checkstore, cli
 from lightrocks.workbench import checkcache
-from lightrocks.workbench.app import checkstore, cli
 from lightrocks.workbench.check import check
 from lightrocks.workbench.incremental import IncrementalCheck
+from lightrocks.workbench.sources import sources_digest
 
 DEVICES = """\
 package robots;
@@ -230,3 +231,24 @@ def test_a_store_that_cannot_be_written_costs_only_time(
 
 def _must_not_check(*args, **kwargs):
     raise AssertionError("the findings were on disk")
+
+
+def test_an_edit_of_the_application_keeps_the_findings_cache_warm(tmp_path: Path) -> None:
+    """The findings depend on the kernel, the metamodel and the languages: the application
+    floor (CLI, monitor, language server) lies outside the code the cache key digests, while
+    an edit inside that code changes the digest."""
+    import lightrocks.app
+    import lightrocks.workbench
+
+    app = Path(lightrocks.app.__file__).resolve().parent
+    kernel = Path(lightrocks.workbench.__file__).resolve().parent
+    places = checkcache.checking_code()
+    assert kernel in places
+    assert not any(p == app or app in p.parents or p in app.parents for p in places)
+
+    code = tmp_path / "code"
+    code.mkdir()
+    (code / "rule.py").write_text("LIMIT = 1\n")
+    before = sources_digest({code}, (".py",))
+    (code / "rule.py").write_text("LIMIT = 2\n")
+    assert sources_digest({code}, (".py",)) != before

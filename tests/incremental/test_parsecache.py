@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
+from lightrocks.app import checkstore, cli
+from lightrocks.app.parsestore import DiskStore, dumps, read
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import checkcache, parsecache
-from lightrocks.workbench.app import checkstore, cli
-from lightrocks.workbench.app.parsestore import DiskStore, dumps, read
 from lightrocks.workbench.languages import language_for
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

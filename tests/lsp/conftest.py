@@ -21,9 +21,7 @@ def examples(tmp_path: Path) -> Path:
 
 
 @pytest_lsp.fixture(
-    config=ClientServerConfig(
-        server_command=[sys.executable, "-m", "lightrocks.workbench.app.cli", "lsp"]
-    )
+    config=ClientServerConfig(server_command=[sys.executable, "-m", "lightrocks.app.cli", "lsp"])
 )
 async def client(lsp_client: LanguageClient, examples: Path):
     await lsp_client.initialize_session(

@@ -7,9 +7,9 @@ from pathlib import Path
 import pytest
 from lsprotocol import types as lsp
 
-from lightrocks.workbench.app.lsp.completion import completions
-from lightrocks.workbench.app.lsp.index import FileIndex, Index
-from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.app.lsp.completion import completions
+from lightrocks.app.lsp.index import FileIndex, Index
+from lightrocks.app.lsp.text import Text
 from lightrocks.workbench.incremental import IncrementalCheck
 
 CHART = """\

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.lsp.index import Index
-from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.app.lsp.index import Index
+from lightrocks.app.lsp.text import Text
 from lightrocks.workbench.incremental import IncrementalCheck
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

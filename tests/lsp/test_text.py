@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from lsprotocol import types as lsp
 
-from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.app.lsp.text import Text
 
 
 def shown(text: Text, found: lsp.Range) -> str:

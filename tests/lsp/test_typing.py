@@ -11,7 +11,7 @@ from lsp_session import change, document, open_file
 from lsprotocol import types as lsp
 from pytest_lsp import LanguageClient
 
-from lightrocks.workbench.app.lsp.text import Text
+from lightrocks.app.lsp.text import Text
 
 RETREAT = Path("screwing") / "skills" / "Retreat.lr"
 

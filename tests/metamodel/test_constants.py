@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
+from lightrocks.app.loading import load_component
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import fold
-from lightrocks.workbench.app.loading import load_component
 
 INTEGERS = ("0", "1", "2", "3", "7", "12")
 REALS = ("0.5", "2.5", "1e1", "3.0")

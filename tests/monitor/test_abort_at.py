@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 pytest.importorskip("starlette", reason="the monitor needs the 'monitor' extra")
 
@@ -21,7 +21,7 @@ SCREW_TASK = str(ROOT / "examples" / "screwing" / "tasks" / "ScrewTask.lr")
 def test_the_run_is_aborted_where_asked(tmp_path: Path, tmp_path_factory) -> None:
     trace = tmp_path / "run.jsonl"
     env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "cache")}
-    command = [sys.executable, "-m", "lightrocks.workbench.app.cli", "run", SCREW_TASK]
+    command = [sys.executable, "-m", "lightrocks.app.cli", "run", SCREW_TASK]
     command += ["--adapter", "dryrun", "--trace", str(trace), "--monitor", "0"]
     command += ["--abort-at", "ScrewTask.Carry"]
     done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)

@@ -3,7 +3,7 @@ that connects late, and the oldest records dropped rather than the run kept wait
 
 from __future__ import annotations
 
-from lightrocks.workbench.app.monitor.feed import CAPACITY, Feed
+from lightrocks.app.monitor.feed import CAPACITY, Feed
 
 
 def sample(time: float) -> dict:

@@ -46,7 +46,7 @@ def launch(tmp_path: Path, tmp_path_factory):
     def start(*arguments: str) -> tuple[str, Path, subprocess.Popen]:
         trace = tmp_path / f"run{len(processes)}.jsonl"
         err = tmp_path / f"stderr{len(processes)}.txt"
-        command = [sys.executable, "-m", "lightrocks.workbench.app.cli", *arguments]
+        command = [sys.executable, "-m", "lightrocks.app.cli", *arguments]
         command += ["--monitor", "0"]
         if arguments[0] == "run":
             command += ["--trace", str(trace)]
@@ -259,7 +259,7 @@ def active_at(run: list[dict], time: float) -> str:
 
 def test_replay_with_the_time_slider(launch, browser, tmp_path: Path) -> None:
     trace = tmp_path / "recorded.jsonl"
-    command = [sys.executable, "-m", "lightrocks.workbench.app.cli", "run", str(SCREW_TASK)]
+    command = [sys.executable, "-m", "lightrocks.app.cli", "run", str(SCREW_TASK)]
     command += ["--adapter", "dryrun", *SCREWED, "--trace", str(trace)]
     subprocess.run(command, check=True, capture_output=True)
     run = records(trace)

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
-from lightrocks.workbench.app.monitor.plot import recording
-from lightrocks.workbench.app.monitor.traces import read_trace
+from lightrocks.app.cli import main
+from lightrocks.app.monitor.plot import recording
+from lightrocks.app.monitor.traces import read_trace
 
 pytest.importorskip("matplotlib", reason="plot needs matplotlib (the 'plot' extra)")
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 pytest.importorskip("starlette", reason="the monitor needs the 'monitor' extra")
 

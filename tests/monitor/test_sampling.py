@@ -4,9 +4,9 @@ commands of several regions at once."""
 from __future__ import annotations
 
 from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.app.monitor.sampling import PERIOD, SampledAdapter
 from lightrocks.runtime import Trace
 from lightrocks.runtime.contract import Command, StopCondition
-from lightrocks.workbench.app.monitor.sampling import PERIOD, SampledAdapter
 
 
 class Robot:

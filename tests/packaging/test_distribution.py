@@ -46,7 +46,7 @@ def test_wheel_carries_every_module_and_data_file(wheel: zipfile.ZipFile) -> Non
 def test_entry_points_name_the_namespace(wheel: zipfile.ZipFile) -> None:
     dist_info = next(n for n in wheel.namelist() if n.endswith("entry_points.txt"))
     text = wheel.read(dist_info).decode()
-    assert "lightrocks = lightrocks.workbench.app.cli:main" in text
+    assert "lightrocks = lightrocks.app.cli:main" in text
     values = [line.split("=", 1)[1].strip() for line in text.splitlines() if "=" in line]
     assert values and all(v.startswith("lightrocks.") for v in values)
 

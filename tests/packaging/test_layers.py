@@ -1,8 +1,9 @@
 """The layer rules of DESIGN §2, proven by walking every import of every module.
 
 A module may import only the layers below it; the workbench kernel is below the languages
-and generators, the application (``lightrocks.workbench.app``) above everything, and the
-generated code's support (``runtime``, ``adapters``) never reaches the language tooling.
+and generators, the application (``lightrocks.app``, a floor of its own) above everything,
+and the generated code's support (``runtime``, ``adapters``) never reaches the language
+tooling.
 """
 
 from __future__ import annotations
@@ -13,8 +14,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-FOLDERS = ("metamodel", "languages", "workbench", "generators", "runtime", "adapters")
-KERNEL, APP = "workbench", "workbench.app"
+FOLDERS = ("metamodel", "languages", "workbench", "generators", "runtime", "adapters", "app")
+KERNEL, APP = "workbench", "app"
 
 ALLOWED: dict[str, set[str]] = {
     "metamodel": set(),
@@ -32,8 +33,6 @@ def layer(dotted: str) -> str | None:
     parts = dotted.split(".")
     if parts[0] != "lightrocks" or len(parts) < 2:
         return None
-    if parts[1:3] == ["workbench", "app"]:
-        return APP
     return parts[1]
 
 
@@ -78,6 +77,6 @@ def test_the_kernel_imports_no_language_and_no_generator() -> None:
 
 def test_the_walker_sees_a_violation(tmp_path: Path) -> None:
     module = tmp_path / "m.py"
-    module.write_text("def f():\n    from lightrocks.workbench.app.cli import main\n")
-    assert (2, "lightrocks.workbench.app.cli") in imported(module)
+    module.write_text("def f():\n    from lightrocks.app.cli import main\n")
+    assert (2, "lightrocks.app.cli") in imported(module)
     assert APP not in ALLOWED[KERNEL]

@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.app.loading import component_class, generated_package
 from lightrocks.workbench import report
-from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
 DOMAIN = """package r;

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from lightrocks.app.loading import component_class, generated_package
 from lightrocks.workbench import report
-from lightrocks.workbench.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
 _counter = itertools.count()

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 import lightrocks.runtime.trace as trace_module
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 from lightrocks.workbench.check import check
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from cocos.cases import BASE, CASES, PICK, materialize, replace
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
 

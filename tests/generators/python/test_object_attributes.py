@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.workbench.app.cli import main
+from lightrocks.app.cli import main
 
 CELL = """package t;
 

@@ -9,11 +9,11 @@ from pathlib import Path
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
+from lightrocks.app.cli import main
+from lightrocks.app.loading import component_class, generated_package
+from lightrocks.app.values import parse_value
 from lightrocks.generators.python import GENERATOR
 from lightrocks.runtime import Vector3
-from lightrocks.workbench.app.cli import main
-from lightrocks.workbench.app.loading import component_class, generated_package
-from lightrocks.workbench.app.values import parse_value
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import GenerationRequest
 
