@@ -81,7 +81,7 @@ class Plant(Protocol):
         ...
 
     def measurements(self) -> dict[str, Any]:
-        """Scene ground truth (see adapters.scene_hooks)."""
+        """Scene ground truth (see adapters.scene)."""
         ...
 
 

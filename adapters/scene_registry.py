@@ -1,33 +1,20 @@
 """Scenes and robot models by name, from the ``lightrocks.scenes`` and ``lightrocks.robots``
 entry points, so that a separate package adds a scene without touching this one.
 
-A scene is an MJCF file plus optional hooks (ground truth, a per-step hook, an analytic
-twin of its fixture for Pinocchio). Its MJCF includes the robot by file name
+A scene is an ``adapters.scene.Scene`` object. Its MJCF includes the robot by file name
 (``<include file="lwr.xml"/>``): every registered robot model is offered under its entry-point
 name, so the scene file may live in any package.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from functools import cache
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import Any
 
 import mujoco
 
-
-@dataclass(frozen=True)
-class Scene:
-    mjcf: Path
-    measurements: Callable[[mujoco.MjModel, mujoco.MjData], Mapping[str, Any]] | None = None
-    """Ground truth (``screw_depth``, …) read by tests, reports and the adapter's user."""
-    step: Callable[[mujoco.MjModel, mujoco.MjData], None] | None = None
-    """Called before every MuJoCo step (1 kHz): keep it cheap."""
-    twin: Callable[[], Any] | None = None
-    """Builds the analytic fixture of the Pinocchio twin (see scene_hooks.FixtureTwin)."""
+from lightrocks.adapters.scene import Scene
 
 
 class UnknownScene(ValueError):

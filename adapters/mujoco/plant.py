@@ -13,7 +13,6 @@ import mujoco
 import numpy as np
 
 from lightrocks.adapters import kernels as k
-from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.mujoco.arm import MujocoArm
@@ -29,6 +28,7 @@ from lightrocks.adapters.robot_model import (
     TCP_SITE,
 )
 from lightrocks.adapters.scene_registry import load_model
+from lightrocks.adapters.scene_registry import scene as registered
 
 _ARRAYS = ("qpos", "qvel", "site_xpos", "site_xmat", "qfrc_bias", "ctrl", "sensordata")
 """The arrays of ``data`` a tick reads or writes."""
@@ -80,12 +80,11 @@ class MujocoPlant:
         index[k.M_JAC_SITE] = function_address("mj_jacSite")
         index[k.M_FULL_M] = function_address("mj_fullM")
         self._index = index
-        self._scene = scene
-        self._scene_step = scene_hooks.step_hook(scene)
+        self._scene = registered(scene)
+        self._scene_step = self._scene.step
         self.arm: ArmState = MujocoArm(self.model, self.data, self._mj, self._index)
         self.arm.sensing[k.S_SENSOR_ROT : k.S_SENSOR_ROT + 9] = self.data.site_xmat[ft]
-        if self._scene_step is not None:
-            self._scene_step(self.model, self.data)
+        self._scene_step(self.model, self.data)
         mujoco.mj_step1(self.model, self.data)
 
     def step(self, tau: np.ndarray, grip: float) -> None:
@@ -103,8 +102,7 @@ class MujocoPlant:
             arm.tau[:] = tau
         k.mujoco_actuate(self._mj, arm.buffer, grip, self._index)
         mujoco.mj_step2(model, data)
-        if self._scene_step is not None:
-            self._scene_step(model, data)
+        self._scene_step(model, data)
         mujoco.mj_step1(model, data)
 
     def wrist(self) -> np.ndarray:
@@ -116,4 +114,4 @@ class MujocoPlant:
         """``data`` is the simulation itself: always current."""
 
     def measurements(self) -> dict[str, Any]:
-        return scene_hooks.measurements(self._scene, self.model, self.data)
+        return self._scene.measurements(self.model, self.data)

@@ -11,7 +11,7 @@ the boxes welded to the world in the scene MJCF (spring-damper normal force, reg
 Coulomb friction); the arm links, the floor plane and moving scene bodies are not collided.
 The wrist reading is quasi-static: the hand load's weight plus the contact forces.
 Scenes with moving parts (screw, terminals) act through their analytic fixture twin from
-``adapters.scenes`` (see adapters.scene_hooks): it is stepped with the TCP pose and returns the
+their scene object (see adapters.scene): it is stepped with the TCP pose and returns the
 wrench it exerts at the TCP; closing on a graspable part stops the fingers at GRASP_WIDTH.
 """
 
@@ -24,7 +24,6 @@ import numpy as np
 import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
-from lightrocks.adapters import scene_hooks
 from lightrocks.adapters.arm import PinocchioArm, address, carrier, in_joint
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
@@ -39,7 +38,9 @@ from lightrocks.adapters.robot_model import (
     TCP_SITE,
     load_robot,
 )
+from lightrocks.adapters.scene import FixtureTwin
 from lightrocks.adapters.scene_registry import load_model
+from lightrocks.adapters.scene_registry import scene as registered
 from lightrocks.adapters.vec import cross
 
 CONTACT_STIFFNESS = 2e4
@@ -74,7 +75,7 @@ class PinocchioPlant:
     """A scene (read from the same MJCF) simulated with Pinocchio dynamics."""
 
     def __init__(self, scene: str) -> None:
-        self._scene = scene
+        self._scene = registered(scene)
         self.model = load_model(scene)
         self.data = mujoco.MjData(self.model)
         joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
@@ -115,13 +116,13 @@ class PinocchioPlant:
         """Environment wrench on the hand subtree at the ft site, world axes."""
         self._tcp_id = self.robot.getFrameId(TCP_SITE)
         self._ft_id = self.robot.getFrameId(FT_SITE)
-        self._fixture = scene_hooks.fixture_twin(scene)
+        self._fixture = self._scene.twin()
         self._grasp = 0.0
         """Finger position [m] where the fingers stop on a grasped fixture part (0: none)."""
         k.twin_wrist(self.arm.buffer, twin, self.arm.index, self.arm.frames)
 
     @property
-    def fixture(self) -> scene_hooks.FixtureTwin | None:
+    def fixture(self) -> FixtureTwin | None:
         """The scene's analytic fixture twin, if it has one."""
         return self._fixture
 
@@ -228,4 +229,4 @@ class PinocchioPlant:
         if self._fixture is not None:
             return dict(self._fixture.measurements())
         self.sync()
-        return scene_hooks.measurements(self._scene, self.model, self.data)
+        return self._scene.measurements(self.model, self.data)

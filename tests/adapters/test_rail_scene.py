@@ -8,26 +8,24 @@ force ramp. The arm is held up by gravity compensation so that it stays out of t
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import mujoco
 import numpy as np
 import pinocchio as pin
 import pytest
 
-from lightrocks.adapters import scenes
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
+from lightrocks.adapters.scene_registry import load_model
+from lightrocks.adapters.scenes import din_rail
 from lightrocks.runtime.contract import StopCondition
-
-SCENE = Path(scenes.__file__).parent / "models" / "din_rail.xml"
 
 
 class Cell:
     """The rail scene with a virtual gripper on one terminal."""
 
     def __init__(self, terminal: str = "terminal2") -> None:
-        self.model = mujoco.MjModel.from_xml_path(str(SCENE))
+        self.model = load_model("din_rail")
         self.data = mujoco.MjData(self.model)
         self.terminal = terminal
         self.body = self.model.body(terminal).id
@@ -38,25 +36,25 @@ class Cell:
 
     def place_over_rail(self, height: float = 0.0028) -> None:
         """Put the terminal upright over its rail slot, ``height`` above the latched pose."""
-        y = scenes.TERMINAL_Y[scenes.TERMINALS.index(self.terminal)]
+        y = din_rail.TERMINAL_Y[din_rail.TERMINALS.index(self.terminal)]
         self.data.qpos[self.qadr : self.qadr + 7] = [
-            scenes.RAIL_X,
+            din_rail.RAIL_X,
             y,
-            scenes.RAIL_LIP_TOP_Z + height,
+            din_rail.RAIL_LIP_TOP_Z + height,
             1,
             0,
             0,
             0,
         ]
-        self.target = np.array([scenes.RAIL_X, y])
+        self.target = np.array([din_rail.RAIL_X, y])
         mujoco.mj_forward(self.model, self.data)
 
     @property
     def height(self) -> float:
-        return float(self.data.xpos[self.body][2]) - scenes.RAIL_LIP_TOP_Z
+        return float(self.data.xpos[self.body][2]) - din_rail.RAIL_LIP_TOP_Z
 
     def values(self) -> dict[str, float | bool]:
-        return scenes.measurements("din_rail", self.model, self.data)
+        return din_rail.SCENE.measurements(self.model, self.data)
 
     def step(self, push: float | None = None) -> None:
         """One step; ``push`` [N, down positive] holds and pushes, None lets go."""
@@ -72,7 +70,7 @@ class Cell:
             spin = d.xmat[self.body].reshape(3, 3) @ vel[3:]
             wrench[3:] = -0.5 * tilt - 0.004 * spin
         d.xfrc_applied[self.body] = wrench
-        scenes.scene_step("din_rail", self.model, d)
+        din_rail.SCENE.step(self.model, d)
         mujoco.mj_step(self.model, d)
 
     def ramp(self, rate: float, until: float) -> float | None:
@@ -88,15 +86,15 @@ class Cell:
 
 def test_scene_loads_with_named_bodies_and_terminals_rest_in_the_tray() -> None:
     cell = Cell()
-    for body in ("table", "rail", "tray", *scenes.TERMINALS):
+    for body in ("table", "rail", "tray", *din_rail.TERMINALS):
         assert cell.model.body(body).id >= 0
-    start = np.array([cell.data.body(t).xpos.copy() for t in scenes.TERMINALS])
+    start = np.array([cell.data.body(t).xpos.copy() for t in din_rail.TERMINALS])
     for _ in range(500):
         cell.step()
-    end = np.array([cell.data.body(t).xpos.copy() for t in scenes.TERMINALS])
+    end = np.array([cell.data.body(t).xpos.copy() for t in din_rail.TERMINALS])
     assert np.max(np.abs(end - start)) < 5e-4
-    assert all(cell.data.body(t).xmat[8] > 0.999 for t in scenes.TERMINALS)
-    assert start[:, 2] == pytest.approx(scenes.TERMINAL_TRAY_Z, abs=5e-4)
+    assert all(cell.data.body(t).xmat[8] > 0.999 for t in din_rail.TERMINALS)
+    assert start[:, 2] == pytest.approx(din_rail.TERMINAL_TRAY_Z, abs=5e-4)
     assert cell.values()["terminals_latched"] == 0
 
 
@@ -106,7 +104,7 @@ def test_terminal_snaps_on_near_the_design_force_and_stays_latched() -> None:
     snap = cell.ramp(rate=40.0, until=45.0)
     print(f"snap-through force: {snap:.1f} N")
     assert snap is not None
-    assert snap == pytest.approx(scenes.SNAP_FORCE, rel=0.15)
+    assert snap == pytest.approx(din_rail.SNAP_FORCE, rel=0.15)
     assert 28.0 <= snap <= 40.0
     for _ in range(500):  # let go
         cell.step()
@@ -136,18 +134,18 @@ def test_terminal_pushed_below_the_snap_force_does_not_latch() -> None:
 
 
 def test_rail_twin_snaps_and_holds() -> None:
-    twin = scenes.RailTwin()
+    twin = din_rail.RailTwin()
     down = np.diag([1.0, -1.0, -1.0])
-    grasp = np.array([scenes.TRAY_X, 0.0, scenes.TERMINAL_TRAY_Z + 0.025])
+    grasp = np.array([din_rail.TRAY_X, 0.0, din_rail.TERMINAL_TRAY_Z + 0.025])
     assert twin.graspable(grasp)
     twin.step(0.001, grasp, down, holding=True)
-    over = np.array([scenes.RAIL_X, 0.0, scenes.RAIL_LIP_TOP_Z + 0.004 + 0.025])
+    over = np.array([din_rail.RAIL_X, 0.0, din_rail.RAIL_LIP_TOP_Z + 0.004 + 0.025])
     twin.step(0.001, over, down, holding=True)
     forces = []
     for i in range(500):  # move down 5 mm
         tcp = over - np.array([0.0, 0.0, 1e-5 * i])
         forces.append(twin.step(0.001, tcp, down, holding=True)[2])
-    assert max(forces[:390]) == pytest.approx(scenes.SNAP_FORCE, rel=0.05)
+    assert max(forces[:390]) == pytest.approx(din_rail.SNAP_FORCE, rel=0.05)
     assert twin.measurements()["terminal2_latched"]
     twin.step(0.001, tcp, down, holding=False)
     assert twin.measurements()["terminal2_latched"]
@@ -158,16 +156,16 @@ def test_rail_twin_snaps_and_holds() -> None:
 def test_rail_twin_leads_a_terminal_within_6mm_onto_the_centre_line(
     across: float, latches: bool
 ) -> None:
-    twin = scenes.RailTwin()
+    twin = din_rail.RailTwin()
     down = np.diag([1.0, -1.0, -1.0])
-    grasp = np.array([scenes.TRAY_X, 0.0, scenes.TERMINAL_TRAY_Z + 0.025])
+    grasp = np.array([din_rail.TRAY_X, 0.0, din_rail.TERMINAL_TRAY_Z + 0.025])
     twin.step(0.001, grasp, down, holding=True)
-    over = np.array([scenes.RAIL_X + across, 0.0, scenes.RAIL_LIP_TOP_Z + 0.008 + 0.025])
+    over = np.array([din_rail.RAIL_X + across, 0.0, din_rail.RAIL_LIP_TOP_Z + 0.008 + 0.025])
     for i in range(900):  # down 9 mm
         twin.step(0.001, over - np.array([0.0, 0.0, 1e-5 * i]), down, holding=True)
     assert twin.measurements()["terminal2_latched"] is latches
     if latches:
-        assert twin.terminals["terminal2"].position[0] == scenes.RAIL_X
+        assert twin.terminals["terminal2"].position[0] == din_rail.RAIL_X
 
 
 @pytest.mark.parametrize("across", [0.008, -0.008])
@@ -177,18 +175,18 @@ def test_rail_twin_terminal_beyond_the_lead_in_stands_on_a_lip_and_twists_the_wr
     """The wedge's end on the lip, 23.5 mm from the terminal's centre, pushes up there: about
     the TCP above the centre that is a twist about y of 23.5 mm times the force, its sign
     telling the side."""
-    twin = scenes.RailTwin()
+    twin = din_rail.RailTwin()
     down = np.diag([1.0, -1.0, -1.0])
-    grasp = np.array([scenes.TRAY_X, 0.0, scenes.TERMINAL_TRAY_Z + 0.025])
+    grasp = np.array([din_rail.TRAY_X, 0.0, din_rail.TERMINAL_TRAY_Z + 0.025])
     twin.step(0.001, grasp, down, holding=True)
-    standing = scenes.RAIL_LIP_TOP_Z + scenes.RAMP_BOTTOM + 0.025
-    tcp = np.array([scenes.RAIL_X + across, 0.0, standing + 0.001])
+    standing = din_rail.RAIL_LIP_TOP_Z + din_rail.RAMP_BOTTOM + 0.025
+    tcp = np.array([din_rail.RAIL_X + across, 0.0, standing + 0.001])
     assert not twin.step(0.001, tcp, down, holding=True).any()
     wrench = twin.step(0.001, tcp - np.array([0.0, 0.0, 0.0011]), down, holding=True)
     assert wrench[2] == pytest.approx(twin.seat_stiffness * 1e-4)
     assert wrench[4] == pytest.approx(math.copysign(0.0235, across) * wrench[2])
     assert not twin.measurements()["terminal2_latched"]
-    assert twin.measurements()["terminal2_height"] == pytest.approx(scenes.RAMP_BOTTOM)
+    assert twin.measurements()["terminal2_height"] == pytest.approx(din_rail.RAMP_BOTTOM)
 
 
 # --- robot level: pick a terminal from the tray and snap it onto the rail ---------------------
@@ -225,21 +223,21 @@ def _snap_on(adapter, terminal: str) -> ClickDetector:
         StopCondition("holding", lambda s: s.gripper.holding),
         StopCondition("empty", lambda s: s.gripper.done),
     ]
-    y = scenes.TERMINAL_Y[scenes.TERMINALS.index(terminal)]
+    y = din_rail.TERMINAL_Y[din_rail.TERMINALS.index(terminal)]
 
     def move(x: float, z: float, speed: float) -> None:
         args = {"goal": pin.SE3(down, np.array([x, y, z])), "speed": speed}
         assert adapter.execute("robot", "moveCartesian", args, reached, 5.0).outcome == "done"
 
     assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
-    move(scenes.TRAY_X, 0.20, 0.2)
-    move(scenes.TRAY_X, scenes.TERMINAL_TRAY_Z + GRASP_HEIGHT, 0.05)
+    move(din_rail.TRAY_X, 0.20, 0.2)
+    move(din_rail.TRAY_X, din_rail.TERMINAL_TRAY_Z + GRASP_HEIGHT, 0.05)
     assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
-    move(scenes.TRAY_X, 0.20, 0.1)
-    move(scenes.RAIL_X, 0.20, 0.2)
-    move(scenes.RAIL_X, scenes.RAIL_LIP_TOP_Z + 0.004 + GRASP_HEIGHT, 0.05)
+    move(din_rail.TRAY_X, 0.20, 0.1)
+    move(din_rail.RAIL_X, 0.20, 0.2)
+    move(din_rail.RAIL_X, din_rail.RAIL_LIP_TOP_Z + 0.004 + GRASP_HEIGHT, 0.05)
     click = ClickDetector()
-    press = pin.SE3(down, np.array([scenes.RAIL_X, y, scenes.RAIL_LIP_TOP_Z - 0.03]))
+    press = pin.SE3(down, np.array([din_rail.RAIL_X, y, din_rail.RAIL_LIP_TOP_Z - 0.03]))
     stop = [
         StopCondition("clicked", click),
         StopCondition("tooHard", lambda s: s.robot.wrench.force.z > 45.0),
@@ -248,7 +246,7 @@ def _snap_on(adapter, terminal: str) -> ClickDetector:
     args = {"goal": press, "speed": 0.005}
     assert adapter.execute("robot", "moveCartesian", args, stop, 6.0).outcome == "clicked"
     assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
-    move(scenes.RAIL_X, 0.20, 0.1)
+    move(din_rail.RAIL_X, 0.20, 0.1)
     return click
 
 
@@ -266,7 +264,7 @@ def test_robot_snaps_a_terminal_on_and_hears_the_click(adapter_class) -> None:
     top = int(np.argmax(trace >= click.peak))  # the peak before the click
     low = float(np.min(trace[top : top + 50]))
     print(f"peak {trace[top]:.1f} N, then {low:.1f} N within 50 ms; {values}")
-    assert trace[top] == pytest.approx(scenes.SNAP_FORCE, rel=0.2)
+    assert trace[top] == pytest.approx(din_rail.SNAP_FORCE, rel=0.2)
     assert low < 0.5 * trace[top]  # the click: a sharp drop right after the peak
     assert values["terminal2_latched"]
     assert not values["terminal1_latched"] and not values["terminal3_latched"]
@@ -276,7 +274,7 @@ def test_robot_snaps_a_terminal_on_and_hears_the_click(adapter_class) -> None:
 def test_robot_fills_the_rail_with_all_three_terminals() -> None:
     adapter = MujocoAdapter("din_rail")
     try:
-        for terminal in scenes.TERMINALS:
+        for terminal in din_rail.TERMINALS:
             _snap_on(adapter, terminal)
         values = adapter.measurements()
     finally:

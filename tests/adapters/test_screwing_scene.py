@@ -15,14 +15,14 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from lightrocks.adapters import scenes
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
 from lightrocks.adapters.scene_registry import load_model
+from lightrocks.adapters.scenes import screwing
 from lightrocks.runtime.contract import StopCondition
 
 HALF_TURN = math.pi
-HOLE = np.array([*scenes.SCREW_AXIS_XY, scenes.CUBE_TOP_Z])
+HOLE = np.array([*screwing.SCREW_AXIS_XY, screwing.CUBE_TOP_Z])
 """The hole's mouth on the cube top."""
 
 
@@ -43,20 +43,20 @@ class Cell:
         return float(self.data.qpos[self.hinge_q])
 
     def values(self) -> dict[str, float | bool]:
-        return scenes.measurements("screwing", self.model, self.data)
+        return screwing.SCENE.measurements(self.model, self.data)
 
     def step(self, hinge_torque: float = 0.0, steps: int = 1) -> None:
         d = self.data
         for _ in range(steps):
             d.qfrc_applied[self.arm_dofs] = d.qfrc_bias[self.arm_dofs]
             d.qfrc_applied[self.hinge_v] = hinge_torque
-            scenes.scene_step("screwing", self.model, d)
+            screwing.SCENE.step(self.model, d)
             mujoco.mj_step(self.model, d)
 
     def hand_start(self) -> None:
         """Put the screw into the hole's mouth, axial, just past the catch: the thread holds."""
-        tip = HOLE - [0.0, 0.0, scenes.CATCH_DEPTH + 1e-5]
-        scenes.place_screw(self.model, self.data, tip)
+        tip = HOLE - [0.0, 0.0, screwing.CATCH_DEPTH + 1e-5]
+        screwing.place_screw(self.model, self.data, tip)
         self.step()
         assert self.values()["thread_caught"]
 
@@ -91,7 +91,7 @@ def test_screw_stands_upright_in_its_holder_and_has_not_caught() -> None:
     assert not values["thread_caught"]
     assert abs(values["screw_depth"]) < 1e-6
     assert [values["screw_x"], values["screw_y"], values["screw_z"]] == pytest.approx(
-        scenes.SCREW_START, abs=3e-4
+        screwing.SCREW_START, abs=3e-4
     )
     assert values["screw_tilt"] < math.radians(1.5)
 
@@ -102,7 +102,7 @@ def lower_into_hole(cell: Cell, offset: float, tilt: float, steps: int = 1500) -
     screw = cell.model.body("screw").id
     free = int(cell.model.joint("screw_free").dofadr[0])
     target = HOLE[:2] + np.array([offset, 0.0])
-    scenes.place_screw(cell.model, cell.data, [*target, HOLE[2] + 0.002], tilt)
+    screwing.place_screw(cell.model, cell.data, [*target, HOLE[2] + 0.002], tilt)
     upright = np.array([math.cos(tilt / 2), math.sin(tilt / 2), 0.0, 0.0])
     for _ in range(steps):
         d = cell.data
@@ -133,7 +133,7 @@ def test_a_tilted_screw_slides_into_the_hole_without_catching() -> None:
     lower_into_hole(cell, offset=0.0, tilt=math.radians(5.0))
     values = cell.values()
     assert not values["thread_caught"]
-    assert values["screw_z"] < HOLE[2] - scenes.CATCH_WINDOW  # it went in, past the catch
+    assert values["screw_z"] < HOLE[2] - screwing.CATCH_WINDOW  # it went in, past the catch
     assert abs(values["screw_depth"]) < 1e-6
 
 
@@ -157,7 +157,7 @@ def test_a_screw_beside_the_hole_rests_on_the_cube() -> None:
     ],
 )
 def test_catch_rule(tip, axis_z, caught) -> None:
-    assert (scenes.catch_depth(np.array(tip), axis_z) is not None) is caught
+    assert (screwing.catch_depth(np.array(tip), axis_z) is not None) is caught
 
 
 def test_screw_is_held_by_the_thread() -> None:
@@ -182,7 +182,7 @@ def test_half_turn_advances_by_half_the_pitch() -> None:
     values = cell.values()
     assert values["screw_angle"] - start["screw_angle"] == pytest.approx(HALF_TURN, abs=0.02)
     advance = values["screw_depth"] - start["screw_depth"]
-    assert advance == pytest.approx(scenes.SCREW_PITCH / 2, abs=5e-5)
+    assert advance == pytest.approx(screwing.SCREW_PITCH / 2, abs=5e-5)
     assert values["screw_z"] == pytest.approx(start["screw_z"] - advance, abs=5e-5)
     assert not values["screw_bottomed"]
 
@@ -196,17 +196,17 @@ def test_torque_grows_with_depth_and_bottom_out_stops_the_screw() -> None:
         torques = cell.turn(HALF_TURN, duration=0.5)
         means.append(float(np.median(torques[100:450])))  # steady part of the turn
     print("median drive torque per half-turn [Nm]:", np.round(means, 3))
-    assert means[0] == pytest.approx(scenes.THREAD_TORQUE_START, abs=0.02)
-    assert means[-1] == pytest.approx(scenes.THREAD_TORQUE_END, abs=0.03)
+    assert means[0] == pytest.approx(screwing.THREAD_TORQUE_START, abs=0.02)
+    assert means[-1] == pytest.approx(screwing.THREAD_TORQUE_END, abs=0.03)
     assert all(b > a for a, b in itertools.pairwise(means))
     assert max(means) < 0.32  # the turn-until-0.32-Nm condition fires only at bottom-out
     values = cell.values()
-    assert values["screw_depth"] == pytest.approx(scenes.SCREW_TARGET_DEPTH, abs=2e-4)
+    assert values["screw_depth"] == pytest.approx(screwing.SCREW_TARGET_DEPTH, abs=2e-4)
     assert values["screw_bottomed"]
     # one more half-turn: the screw stays put and the torque needed exceeds 0.32 Nm at once
     torques = cell.turn(HALF_TURN, duration=0.5)
     values = cell.values()
-    assert values["screw_depth"] == pytest.approx(scenes.SCREW_TARGET_DEPTH, abs=2e-4)
+    assert values["screw_depth"] == pytest.approx(screwing.SCREW_TARGET_DEPTH, abs=2e-4)
     assert np.argmax(np.abs(torques) > 0.32) < 50
     assert np.max(np.abs(torques)) > 1.0
 
@@ -216,33 +216,33 @@ DOWN = np.diag([1.0, -1.0, -1.0])
 
 
 def test_screw_twin_is_carried_meets_the_cube_and_catches_only_on_the_axis() -> None:
-    twin = scenes.ScrewTwin()
-    start = np.array(scenes.SCREW_START)
-    grasp = start + np.array([0.0, 0.0, scenes.SCREW_LENGTH])
+    twin = screwing.ScrewTwin()
+    start = np.array(screwing.SCREW_START)
+    grasp = start + np.array([0.0, 0.0, screwing.SCREW_LENGTH])
     assert twin.graspable(grasp)
     assert not twin.step(0.001, grasp, DOWN, holding=True).any()
     # carried 4 mm beside the hole, the tip 1 mm into the cube top: pushed up
-    beside = HOLE + np.array([0.004, 0.0, scenes.SCREW_LENGTH - 0.001])
+    beside = HOLE + np.array([0.004, 0.0, screwing.SCREW_LENGTH - 0.001])
     wrench = twin.step(0.001, beside, DOWN, holding=True)
     assert wrench[2] == pytest.approx(twin.contact_stiffness * 0.001)
     assert not twin.caught
     # leaning 3 deg over the hole: not caught
     leaning = DOWN @ pin.utils.rotate("x", math.radians(3.0))
-    tip_in = HOLE[2] - scenes.CATCH_DEPTH - 0.0002
-    tcp = np.array([*HOLE[:2], tip_in]) - leaning @ [0.0, 0.0, -scenes.SCREW_LENGTH]
+    tip_in = HOLE[2] - screwing.CATCH_DEPTH - 0.0002
+    tcp = np.array([*HOLE[:2], tip_in]) - leaning @ [0.0, 0.0, -screwing.SCREW_LENGTH]
     twin.step(0.001, tcp, leaning, holding=True)
     assert not twin.caught
     # axial over the hole: caught at depth 0
-    twin.step(0.001, np.array([*HOLE[:2], tip_in + scenes.SCREW_LENGTH]), DOWN, holding=True)
+    twin.step(0.001, np.array([*HOLE[:2], tip_in + screwing.SCREW_LENGTH]), DOWN, holding=True)
     assert twin.caught
     assert twin.depth == pytest.approx(0.0002)
 
 
 def test_screw_twin_advances_and_bottoms_out() -> None:
-    twin = scenes.ScrewTwin()
-    grasp = np.array(scenes.SCREW_START) + np.array([0.0, 0.0, scenes.SCREW_LENGTH])
+    twin = screwing.ScrewTwin()
+    grasp = np.array(screwing.SCREW_START) + np.array([0.0, 0.0, screwing.SCREW_LENGTH])
     twin.step(0.001, grasp, DOWN, holding=True)
-    top = HOLE[2] - scenes.CATCH_DEPTH - 1e-6 + scenes.SCREW_LENGTH
+    top = HOLE[2] - screwing.CATCH_DEPTH - 1e-6 + screwing.SCREW_LENGTH
     tcp = np.array([*HOLE[:2], top])
     twin.step(0.001, tcp, DOWN, holding=True)
     assert twin.caught and twin.depth == pytest.approx(0.0, abs=1e-5)
@@ -260,7 +260,7 @@ def test_screw_twin_advances_and_bottoms_out() -> None:
         yaw -= HALF_TURN
     values = twin.measurements()
     assert values["screw_bottomed"]
-    assert values["screw_depth"] == pytest.approx(scenes.SCREW_TARGET_DEPTH)
+    assert values["screw_depth"] == pytest.approx(screwing.SCREW_TARGET_DEPTH)
     assert 0.04 < torques[250] < 0.07
     assert 0.18 < torques[7 * 500 + 250] < 0.22
     assert max(torques) > 0.32
@@ -273,7 +273,7 @@ TURN = math.radians(179.5)
 from rounding noise (either way is the same rotation)."""
 TURN_STIFFNESS = [2000.0, 2000.0, 800.0, 150.0, 150.0, 30.0]
 TIGHT = 0.32
-GRASP_Z = scenes.SCREW_HEAD_TOP_Z - 0.003
+GRASP_Z = screwing.SCREW_HEAD_TOP_Z - 0.003
 """TCP height for the grasp: fingertips 4 mm above the head's underside."""
 
 
@@ -281,8 +281,8 @@ def hand_start(adapter) -> None:
     """Start with the screw in the hole and its thread caught, as a worker would leave it."""
     plant = adapter.plant
     if isinstance(adapter, MujocoAdapter):
-        tip = HOLE - [0.0, 0.0, scenes.CATCH_DEPTH + 1e-5]
-        scenes.place_screw(plant.model, plant.data, tip)
+        tip = HOLE - [0.0, 0.0, screwing.CATCH_DEPTH + 1e-5]
+        screwing.place_screw(plant.model, plant.data, tip)
     else:
         plant.fixture.hand_start()
 
@@ -299,7 +299,7 @@ def _screw_in(adapter, *, turns: int = 12) -> tuple[list[tuple[str, float, float
         StopCondition("holding", lambda s: s.gripper.holding),
         StopCondition("empty", lambda s: s.gripper.done),
     ]
-    x, y = scenes.SCREW_AXIS_XY
+    x, y = screwing.SCREW_AXIS_XY
     assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
     for z, speed in ((GRASP_Z + 0.05, 0.2), (GRASP_Z, 0.05)):
         goal = pin.SE3(down, np.array([x, y, z]))
@@ -310,7 +310,7 @@ def _screw_in(adapter, *, turns: int = 12) -> tuple[list[tuple[str, float, float
     assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
 
     log = []
-    advance = scenes.SCREW_PITCH * TURN / (2 * math.pi)  # a screw motion: turn and follow
+    advance = screwing.SCREW_PITCH * TURN / (2 * math.pi)  # a screw motion: turn and follow
     for _ in range(turns):
         peak = [0.0]
 
@@ -367,5 +367,5 @@ def test_robot_screws_in_until_the_thread_tightens(adapter_class) -> None:
     assert max(peaks) < TIGHT and peaks[-1] > peaks[0] + 0.05  # the thread gets tighter
     # ... until the head seats: then the turn stops on the 0.32 Nm condition at target depth
     assert outcomes[-1] == "torqueLimit"
-    assert depth == pytest.approx(scenes.SCREW_TARGET_DEPTH, abs=2e-4)
+    assert depth == pytest.approx(screwing.SCREW_TARGET_DEPTH, abs=2e-4)
     assert values["screw_bottomed"]

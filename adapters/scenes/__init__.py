@@ -1,0 +1,1 @@
+"""The built-in scenes, one module each, registered as ``lightrocks.scenes`` entry points."""
