@@ -203,9 +203,9 @@ def test_ctrl_c_cancels_the_sweep_and_writes_nothing(tmp_path: Path):
 
 
 def test_sweep_without_its_extra_names_the_install(gate: Path, monkeypatch, capsys):
-    from lightrocks.app import cli
+    from lightrocks.app.commands import sweep
 
-    real = cli.find_spec
-    monkeypatch.setattr(cli, "find_spec", lambda name: None if name == "pyarrow" else real(name))
+    real = sweep.find_spec
+    monkeypatch.setattr(sweep, "find_spec", lambda name: None if name == "pyarrow" else real(name))
     assert _sweep(gate, "--seeds", "1") == 2
     assert "pip install 'lightrocks[sweep]'" in capsys.readouterr().err

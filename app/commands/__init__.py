@@ -1,0 +1,8 @@
+"""The commands of the ``lightrocks`` command line, one module each; importing this package
+registers them all in :data:`common.COMMANDS`, in the order ``--help`` lists them."""
+
+# isort: off
+from lightrocks.app.commands import check, fmt, generate, run, sweep  # noqa: F401
+from lightrocks.app.commands import replay, plot, listing, lsp  # noqa: F401
+
+# isort: on

@@ -1,0 +1,98 @@
+"""What every command of the ``lightrocks`` command line shares: the registry of commands,
+exit codes, usage errors and the checks of paths and options that the commands take."""
+
+from __future__ import annotations
+
+import argparse
+import os
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
+
+Command = Callable[[argparse.Namespace], int]
+COMMANDS: dict[str, tuple[Callable[[argparse._SubParsersAction], None], Command]] = {}
+
+
+def command(
+    configure: Callable[[argparse._SubParsersAction], None],
+) -> Callable[[Command], Command]:
+    """Register a sub-command: ``configure`` adds its parser, the function runs it."""
+
+    def register(run: Command) -> Command:
+        COMMANDS[run.__name__.removeprefix("cmd_")] = (configure, run)
+        return run
+
+    return register
+
+
+class UsageError(Exception):
+    """Wrong use of the command line: reported with exit code 2."""
+
+
+def existing_paths(paths: Sequence[str]) -> list[Path]:
+    """The given files and folders; anything else (a FIFO, a device) is never read."""
+    missing = [p for p in paths if not Path(p).exists()]
+    if missing:
+        raise UsageError(f"no such file or folder: {', '.join(missing)}")
+    special = [p for p in paths if not (Path(p).is_file() or Path(p).is_dir())]
+    if special:
+        raise UsageError(f"not a regular file or folder: {', '.join(special)}")
+    return [Path(p) for p in paths]
+
+
+def statechart_file(path: str) -> Path:
+    """The one ``.lr`` file ``run`` takes."""
+    [model] = existing_paths([path])
+    if model.is_dir():
+        raise UsageError(f"{path} is a folder: run takes one statechart file (.lr)")
+    if model.suffix != ".lr":
+        raise UsageError(f"{path} is not a statechart file (.lr): run takes one")
+    return model.resolve()
+
+
+def trace_file(path: str | None) -> Path | None:
+    """Where ``--trace`` writes: a new or regular file in an existing folder."""
+    if path is None:
+        return None
+    trace = Path(path)
+    if trace.exists() and not trace.is_file():
+        raise UsageError(f"--trace: {path} is not a regular file")
+    if not trace.parent.is_dir():
+        raise UsageError(f"--trace: no such folder: {trace.parent}")
+    if not os.access(trace.parent, os.W_OK):
+        raise UsageError(f"--trace: cannot write to folder {trace.parent}")
+    return trace
+
+
+def path_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="model-path folder (package = sub-folder); repeatable",
+    )
+
+
+def option(text: str) -> tuple[str, str]:
+    """A generator option ``NAME=VALUE``."""
+    name, separator, value = text.partition("=")
+    if not separator or not name:
+        raise UsageError(f"option '{text}' is not NAME=VALUE")
+    return name, value
+
+
+def all_cocos() -> list[Any]:
+    from lightrocks.workbench.check import all_cocos as every_coco
+
+    return every_coco()
+
+
+def keep_parses_on_disk() -> None:
+    """Parse results outlive the process: the next run does not parse an unchanged file."""
+    from lightrocks.app import parsestore
+    from lightrocks.workbench import parsecache
+
+    parsecache.use_store(parsestore.DiskStore())

@@ -1,0 +1,38 @@
+"""``lightrocks list``: the registered languages, CoCos, generators, adapters or scenes."""
+
+from __future__ import annotations
+
+import argparse
+
+from lightrocks.app.commands.common import EXIT_OK, all_cocos, command
+
+
+def _configure_list(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("list", help="list languages, CoCos, generators, adapters or scenes")
+    parser.add_argument("what", choices=("languages", "cocos", "generators", "adapters", "scenes"))
+
+
+@command(_configure_list)
+def cmd_list(args: argparse.Namespace) -> int:
+    from importlib.metadata import entry_points
+
+    from lightrocks.workbench.extensions import language_extensions
+    from lightrocks.workbench.generators import load_generator
+    from lightrocks.workbench.languages import languages
+
+    if args.what == "languages":
+        rows = [(lang.name, " ".join(lang.extensions), lang.description) for lang in languages()]
+        rows += [(e.name, f"extends {e.extends}", e.description) for e in language_extensions()]
+    elif args.what == "cocos":
+        rows = [(c.code, c.severity.value, c.summary) for c in all_cocos()]
+    elif args.what == "generators":
+        rows = [
+            (e.name, e.value, load_generator(e.name).description)
+            for e in sorted(entry_points(group="lightrocks.generators"), key=str)
+        ]
+    else:
+        group = f"lightrocks.{args.what}"
+        rows = [(e.name, e.value, "") for e in sorted(entry_points(group=group), key=str)]
+    for row in rows:
+        print("  ".join(part for part in row if part))
+    return EXIT_OK

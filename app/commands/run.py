@@ -1,0 +1,153 @@
+"""``lightrocks run``: a statechart generated, bound to an adapter and run, or run over seeds."""
+
+from __future__ import annotations
+
+import argparse
+
+from lightrocks.app.commands.common import (
+    EXIT_FINDINGS,
+    UsageError,
+    command,
+    existing_paths,
+    path_option,
+    statechart_file,
+    trace_file,
+)
+from lightrocks.app.commands.monitoring import watch_for
+
+
+def _configure_run(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("run", help="generate Python for a statechart and run it")
+    parser.add_argument("model", help="the .lr file of the statechart to run")
+    parser.add_argument("--adapter", help="adapter name (see 'list adapters'); none for plain")
+    parser.add_argument(
+        "--param", action="append", default=[], metavar="NAME=VALUE", help="parameter value"
+    )
+    parser.add_argument("--trace", help="write the trace (JSON lines) to this file")
+    parser.add_argument(
+        "--events",
+        default="",
+        help="comma-separated events to send in order; +500ms advances the virtual clock",
+    )
+    parser.add_argument("--seed", type=int, default=0, help="the adapter's random seed")
+    parser.add_argument(
+        "--seeds", type=int, metavar="N", help="repeat with seeds SEED..SEED+N-1 and report"
+    )
+    parser.add_argument(
+        "--workers", type=int, metavar="K", help="processes for --seeds (default: one per core)"
+    )
+    parser.add_argument(
+        "--perception-noise",
+        metavar="LENGTH,ANGLE",
+        help="Gaussian sigmas of the camera's position and rotation, e.g. 2mm,2deg",
+    )
+    parser.add_argument("--video", metavar="FILE", help="record a video (.mp4) or PNG frames")
+    parser.add_argument(
+        "--script",
+        metavar="FILE",
+        help="JSON file of scripted outcomes and sensor values for the dry run",
+    )
+    parser.add_argument(
+        "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
+    )
+    parser.add_argument(
+        "--monitor", metavar="[HOST:]PORT", help="serve a live page of the run (host 127.0.0.1)"
+    )
+    parser.add_argument(
+        "--break",
+        dest="breakpoints",
+        action="append",
+        default=[],
+        metavar="Q.NAME",
+        help="pause on entering this state (with --monitor); repeatable",
+    )
+    parser.add_argument(
+        "--paused", action="store_true", help="wait for Resume or Step on the page (--monitor)"
+    )
+    parser.add_argument(
+        "--abort-at",
+        dest="aborts",
+        action="append",
+        default=[],
+        metavar="Q.NAME",
+        help="abort safely on entering this state (with --monitor); repeatable",
+    )
+    path_option(parser)
+
+
+@command(_configure_run)
+def cmd_run(args: argparse.Namespace) -> int:
+    from functools import partial
+
+    from lightrocks.app import display, values
+    from lightrocks.app.adapter_factory import adapter_options
+    from lightrocks.app.errors import ModelError, RunError
+    from lightrocks.app.loading import load_component
+    from lightrocks.app.run import run_component, run_header, success_outcome
+    from lightrocks.app.script import read_script
+    from lightrocks.app.seeds import run_seeds
+    from lightrocks.workbench.generators import GenerationError
+
+    model = statechart_file(args.model)
+    search_path = existing_paths(args.path)
+    trace = trace_file(args.trace)
+    script_file = existing_paths([args.script])[0] if args.script else None
+    events = [e.strip() for e in args.events.split(",") if e.strip()]
+    if args.seeds is not None and args.seeds < 1:
+        raise UsageError("--seeds must be at least 1")
+    if args.workers is not None and (args.seeds is None or args.workers < 1):
+        raise UsageError("--workers needs --seeds and must be at least 1")
+    if args.seeds is not None and args.video:
+        raise UsageError("--video records a single run: leave out --seeds")
+    if (args.breakpoints or args.paused or args.aborts) and not args.monitor:
+        raise UsageError("--break, --abort-at and --paused need --monitor")
+    if args.monitor and args.seeds is not None:
+        raise UsageError("--monitor watches a single run: leave out --seeds")
+    try:
+        noise = values.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
+        cls = load_component(model, search_path)
+        wanted = success_outcome(cls, args.success)
+        values.parameters(cls, args.param)
+        script = read_script(script_file, cls) if script_file else None
+        adapter_options(args.adapter, args.seed, noise, args.video, script)
+        if args.seeds is not None:
+            seeds = range(args.seed, args.seed + args.seeds)
+            many = partial(
+                run_seeds,
+                model,
+                search_path,
+                args.param,
+                args.adapter,
+                seeds,
+                noise,
+                trace,
+                events=events,
+                success=args.success,
+                workers=args.workers,
+                script=script,
+            )
+            return display.show_seeds(cls.NAME, wanted, len(seeds), many)
+        watch = watch_for(args, model, search_path, cls.NAME) if args.monitor else None
+        single = partial(
+            run_component,
+            cls,
+            args.param,
+            args.adapter,
+            args.seed,
+            noise,
+            trace,
+            args.video,
+            events=events,
+            success=args.success,
+            script=script,
+            watch=watch,
+            header=run_header(model, search_path),
+        )
+        return display.show(cls.NAME, single)
+    except ModelError as error:
+        print(error)  # the findings, already neutralised by report.text
+        return EXIT_FINDINGS
+    except (RunError, GenerationError) as error:
+        raise UsageError(str(error)) from None
+    except OSError as error:
+        raise UsageError(f"cannot write {error.filename or 'output'}: {error.strerror}") from None
