@@ -1,7 +1,11 @@
 """Safe ranges enforced where a value leaves the runtime for a device: a command argument only
 known at run time (a run parameter, a computed value) outside the range its device declares
 is refused before anything moves. Generated classes carry the ranges as data, so every way of
-running them (command line, ``run_once``, ``--seeds``, plain Python) is held to them."""
+running them (command line, ``run_once``, ``--seeds``, plain Python) is held to them.
+
+This is the one implementation of the check and its message, here because the runtime may
+import nothing of ours: the language's checks of constant values (languages/domain/ranges.py)
+import it, so that check and run judge a value alike (NaN is never safe)."""
 
 from __future__ import annotations
 

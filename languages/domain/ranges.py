@@ -1,6 +1,7 @@
 """Safe ranges of device command arguments as a domain interface declares them: the constant
-value of an expression, the bounds of each element in the unit they were written in, and the
-message that names device, command, element and range."""
+value of an expression and the bounds of each element in the unit they were written in. The
+check and its message are the runtime's (``runtime.safety.SafeRange``), so that a constant
+the check accepts is one the run accepts."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from typing import TypeVar
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import fold
 from lightrocks.metamodel.units import UnitError, lookup
+from lightrocks.runtime.safety import Bound, SafeRange
 
 T = TypeVar("T")
 
@@ -35,23 +37,18 @@ class Range:
         size = max(len(lows), len(highs))
         return tuple(_merge(_at(lows, i), _at(highs, i)) for i in range(size))
 
+    def safe_range(self) -> SafeRange | None:
+        """The range as the runtime checks it; ``None`` when its bounds are not constant."""
+        bounds = tuple(Bound(*element) for element in self.elements())
+        return SafeRange(self.device, self.command, self.argument, bounds) if bounds else None
+
     def breach(self, value: ast.Expression) -> str | None:
         """Why a constant ``value`` is unsafe here; ``None`` when it is safe or not constant."""
         numbers = constant_values(value)
-        if numbers is None:
+        safe = self.safe_range()
+        if numbers is None or safe is None:
             return None
-        elements = self.elements()
-        vector = len(numbers) > 1 or len(elements) > 1
-        for index, number in enumerate(numbers):
-            low, high, unit, factor = _at(elements, index) or (None, None, "", 1.0)
-            if (low is not None and number < low) or (high is not None and number > high):
-                element = f"{self.argument}[{index}]" if vector else self.argument
-                shown = [_show(n, unit, factor, u) for n, u in ((low, "-inf"), (high, "inf"))]
-                return (
-                    f"{self.device}.{self.command}({element}) = {_show(number, unit, factor)}"
-                    f" is outside its safe range {shown[0]} .. {shown[1]}"
-                )
-        return None
+        return safe.breach(numbers)
 
 
 def constant_values(expression: ast.Expression | None) -> list[float] | None:
@@ -98,12 +95,6 @@ def _at(values: Sequence[T], index: int) -> T | None:
     if not values:
         return None
     return values[index] if index < len(values) else values[0]
-
-
-def _show(number: float | None, unit: str, factor: float, unbounded: str = "") -> str:
-    if number is None:
-        return unbounded
-    return f"{number / factor:g} {unit}".rstrip()
 
 
 def command_ranges(device: str, command: ast.Command) -> dict[str, Range]:

@@ -22,7 +22,7 @@ ALLOWED: dict[str, set[str]] = {
     "runtime": set(),
     "adapters": {"runtime"},
     KERNEL: {"metamodel"},
-    "languages": {"metamodel", KERNEL},
+    "languages": {"metamodel", KERNEL, "runtime"},
     "generators": {"metamodel", KERNEL, "languages", "runtime"},
     APP: {"metamodel", KERNEL, "languages", "generators", "runtime", "adapters"},
 }
