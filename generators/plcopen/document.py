@@ -1,6 +1,6 @@
 """One SFC compilation unit as a PLCopen TC6 XML v2.01 project, with graphical SFC bodies.
 
-The POUs are those of the textual SFC target (``sfc_iec61131.build``), so both exports mean
+The POUs are those of the textual SFC target (``sfc_iec61131.unit``), so both exports mean
 the same. Each component's network is drawn as columns, one per step: the step, its action
 block, a selection divergence when it has several ways out, and under each transition a
 jump to the target step. Bodies of actions, device blocks, functions and the program stay
@@ -14,8 +14,9 @@ import xml.etree.ElementTree as ET
 from datetime import UTC, datetime
 from itertools import count
 
-from lightrocks.generators.sfc_iec61131.build import Block, Transition, Unit, Variable
+from lightrocks.generators.sfc_iec61131.expressions import outside_strings
 from lightrocks.generators.sfc_iec61131.frames import FRAME_FIELDS, FUNCTIONS
+from lightrocks.generators.sfc_iec61131.ir import Block, Transition, Unit, Variable
 
 NAMESPACE = "http://www.plcopen.org/xml/tc6_0201"
 XHTML = "http://www.w3.org/1999/xhtml"
@@ -55,16 +56,15 @@ def _type(parent: ET.Element, tag: str, st_type: str) -> None:
 
 def _split(items: str) -> list[str]:
     """The comma-separated parts of a literal, ignoring commas inside brackets or strings."""
-    parts, depth, current, quoted = [], 0, "", False
-    for character in items:
-        quoted = quoted != (character == "'")
-        depth += 0 if quoted else {"[": 1, "]": -1, "(": 1, ")": -1}.get(character, 0)
-        if character == "," and depth == 0 and not quoted:
-            parts.append(current.strip())
-            current = ""
-        else:
-            current += character
-    return [*parts, current.strip()] if current.strip() else parts
+    cuts, depth = [], 0
+    for index, character in outside_strings(items):
+        depth += {"[": 1, "]": -1, "(": 1, ")": -1}.get(character, 0)
+        if character == "," and depth == 0:
+            cuts.append(index)
+    parts = [
+        items[a + 1 : b].strip() for a, b in zip([-1, *cuts], [*cuts, len(items)], strict=True)
+    ]
+    return parts if parts[-1] else parts[:-1]
 
 
 def _value(parent: ET.Element, tag: str, literal: str, **attributes: str) -> None:

@@ -7,10 +7,11 @@ from collections import Counter
 from pathlib import Path
 
 from lightrocks.generators.selection import is_action, selected
-from lightrocks.generators.sfc_iec61131.build import Unit, UnitBuilder
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.generators.sfc_iec61131.expressions import time_literal
 from lightrocks.generators.sfc_iec61131.frames import FRAME_FIELDS, FUNCTIONS
+from lightrocks.generators.sfc_iec61131.ir import Unit
+from lightrocks.generators.sfc_iec61131.unit import UnitBuilder
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.languages.lightrocks.typing import Typing

@@ -9,7 +9,7 @@ floored remainder of Python, whose sign follows the divisor.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 from lightrocks.languages.domain.types import FRAME, NUMBER, DeviceT, QuantityT, Type, VectorT
@@ -49,6 +49,23 @@ def string_literal(value: str) -> str:
         else:
             parts.append("".join(f"${byte:02X}" for byte in character.encode("utf-8")))
     return "'" + "".join(parts) + "'"
+
+
+def outside_strings(text: str) -> Iterator[tuple[int, str]]:
+    """Index and character of every character of ST ``text`` outside its string literals
+    (``'…'`` and ``"…"``, with ``$`` escapes): what may be structure, never data."""
+    quote = ""
+    escaped = False
+    for index, character in enumerate(text):
+        if escaped:
+            escaped = False
+        elif quote:
+            escaped = character == "$"
+            quote = "" if character == quote else quote
+        elif character in "'\"":
+            quote = character
+        else:
+            yield index, character
 
 
 def real(value: float) -> str:
@@ -94,6 +111,18 @@ def literal(expression: ast.Expression, declared: Type | None = None) -> str | N
     runtime computes it, or None if not constant; a number is written as the ST type of
     ``declared`` when given."""
     return _literal_of(fold(expression), declared, expression.position)
+
+
+def initial_value(default: ast.Expression | None, declared: Type | None, what: str) -> str:
+    """A declaration's initial value: the default folded to a constant ("" without one)."""
+    if default is None:
+        return ""
+    initial = literal(default, declared)
+    if initial is None:
+        raise GenerationError(
+            f"{default.position}: the SFC target needs a constant default for {what}"
+        )
+    return initial
 
 
 def _literal_of(value: Value | None, declared: Type | None, position: ast.Position) -> str | None:

@@ -26,7 +26,7 @@ from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.loading import load_component
 from lightrocks.app.run import drive
 from lightrocks.app.values import parse_delay
-from lightrocks.generators.sfc_iec61131.build import Block, Unit
+from lightrocks.generators.sfc_iec61131.ir import Block, Unit
 
 PLACES = (JUDGES / "matiec", Path("/opt/matiec"))
 BEREMIZ_OPTIONS = ("-f", "-l", "-p")
