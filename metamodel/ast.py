@@ -185,10 +185,15 @@ class Stereotype:
 
 @dataclass(frozen=True)
 class Parameter:
+    """A parameter, or an attribute of a scene object (which may declare the range of values
+    it takes, ``low .. high``)."""
+
     type: str
     name: str
     default: Expression | None = None
     position: Position = _position()
+    low: Expression | None = None
+    high: Expression | None = None
 
 
 @dataclass(frozen=True)
@@ -411,9 +416,15 @@ class Command:
 
 @dataclass(frozen=True)
 class Sensor:
+    """A sensor; ``start`` is its value when a command of its device starts, ``low .. high``
+    the range of values it reports (both optional)."""
+
     type: str
     name: str
     position: Position = _position()
+    start: Expression | None = None
+    low: Expression | None = None
+    high: Expression | None = None
 
 
 @dataclass(frozen=True)

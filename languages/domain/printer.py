@@ -84,7 +84,9 @@ def _member(writer: Writer, node: Member) -> None:
             writer.line(fit(f"command {name}(", items, tail, writer.width), where.line)
         case ast.Sensor(type=type_, name=name):
             writer.item(where, "sensor")
-            writer.line([f"sensor {type_} {name};"], where.line)
+            start = f" = {expression(node.start)}" if node.start is not None else ""
+            text = f"sensor {type_} {name}{start}{_range(node.low, node.high)};"
+            writer.line([text], where.line)
         case ast.DeviceInstance(name=name, type=type_):
             writer.item(where, "device")
             writer.line([f"{name} : {type_};"], where.line)
@@ -96,8 +98,22 @@ def _member(writer: Writer, node: Member) -> None:
             writer.open([f"object {name} {{"], where.line)
             for attribute in attributes:
                 writer.item(attribute.position, "attribute")
-                writer.line([parameter(attribute)], attribute.position.line)
+                text = _attribute(attribute) if attribute.low is not None else parameter(attribute)
+                writer.line([text], attribute.position.line)
             writer.close(where)
+
+
+def _range(low: ast.Expression | None, high: ast.Expression | None) -> str:
+    """`` in low .. high``, or nothing when no range is declared."""
+    if low is None or high is None:
+        return ""
+    return f" in {expression(low)} .. {expression(high)}"
+
+
+def _attribute(node: ast.Parameter) -> str:
+    """An attribute with a declared range of values."""
+    default = f" = {expression(node.default)}" if node.default is not None else ""
+    return f"{node.type} {node.name}{default}{_range(node.low, node.high)};"
 
 
 def _command_parameter(node: ast.CommandParameter) -> list[str]:

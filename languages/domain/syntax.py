@@ -56,7 +56,14 @@ class DomainConverter(Converter):
         )
 
     def rule_Sensor(self, node: Any) -> ast.Sensor:
-        return ast.Sensor(node.type, node.name, self.position(node))
+        return ast.Sensor(
+            node.type,
+            node.name,
+            self.position(node),
+            self.optional(node.start),
+            self.optional(node.low),
+            self.optional(node.high),
+        )
 
     def rule_Cell(self, node: Any) -> ast.Cell:
         return ast.Cell(
@@ -70,7 +77,14 @@ class DomainConverter(Converter):
         return ast.SceneObject(node.name, self.many(node.attributes), self.position(node))
 
     def rule_ObjectAttribute(self, node: Any) -> ast.Parameter:
-        return ast.Parameter(node.type, node.name, self.optional(node.default), self.position(node))
+        return ast.Parameter(
+            node.type,
+            node.name,
+            self.optional(node.default),
+            self.position(node),
+            self.optional(node.low),
+            self.optional(node.high),
+        )
 
     def rule_DeviceInstance(self, node: Any) -> ast.DeviceInstance:
         return ast.DeviceInstance(node.name, node.type, self.position(node))

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from lightrocks.languages.lightrocks.cocos import COCOS
+from lightrocks.languages.lightrocks.cocos_behaviour import BEHAVIOUR_COCOS
 from lightrocks.languages.lightrocks.cocos_safety import SAFETY_COCOS
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
@@ -27,6 +28,6 @@ LANGUAGE = Language(
     parse=parse_statechart,
     format=_format,
     declarations=_declarations,
-    cocos=COCOS + SAFETY_COCOS,
+    cocos=COCOS + SAFETY_COCOS + BEHAVIOUR_COCOS,
     description="tasks, skills and elemental actions as UML/P statecharts",
 )

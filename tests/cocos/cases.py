@@ -838,3 +838,7 @@ def materialize(root, files: dict[str, str | bytes]) -> tuple[str, int, int] | N
 from cocos.cases_safety import SAFETY_CASES  # noqa: E402  (its models build on the ones above)
 
 CASES += SAFETY_CASES
+
+from cocos.cases_behaviour import BEHAVIOUR_CASES  # noqa: E402  (built on the models above)
+
+CASES += BEHAVIOUR_CASES

@@ -1,0 +1,83 @@
+"""Questions to the SMT solver about conditions, and witnesses in the model's own units.
+
+Every question is asked under the declared ranges of the variables read. A question the
+solver cannot answer in time counts as "may hold", so that no finding rests on a guess.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import z3
+
+from lightrocks.languages.lightrocks.behaviour.terms import Terms
+from lightrocks.languages.lightrocks.behaviour.variables import Variable
+from lightrocks.metamodel.units import lookup
+
+TIMEOUT_MS = 500
+
+
+class Judge:
+    def __init__(self, terms: Terms) -> None:
+        self.terms = terms
+
+    def possible(self, *facts: z3.BoolRef) -> z3.ModelRef | bool:
+        """A model where all ``facts`` hold, False when none exists, True when unknown."""
+        solver = z3.Solver()
+        solver.set("timeout", TIMEOUT_MS)
+        solver.add(*self.terms.ranges(), *facts)
+        answer = solver.check()
+        if answer == z3.sat:
+            return solver.model()
+        return answer != z3.unsat
+
+    def never(self, *facts: z3.BoolRef) -> bool:
+        """The facts can never hold together (proved)."""
+        return self.possible(*facts) is False
+
+    def always(self, fact: z3.BoolRef, *given: z3.BoolRef) -> bool:
+        """``fact`` holds whenever ``given`` do (proved)."""
+        return self.never(*given, z3.Not(fact))
+
+    def witness(self, model: z3.ModelRef, formula: z3.ExprRef) -> str:
+        """The values of the model's variables that ``formula`` reads, as the model reads."""
+        names = {str(c) for c in _constants(formula)}
+        parts = []
+        for path, (variable, term) in sorted(self.terms.read.items()):
+            if path not in names or variable.kind == "unknown":
+                continue
+            parts.append(f"{path} = {show(variable, model.eval(term, model_completion=True))}")
+        return ", ".join(parts)
+
+
+def show(variable: Variable, value: z3.ExprRef) -> str:
+    """A solver value in the unit the variable is declared in (SI symbol otherwise)."""
+    if z3.is_true(value) or z3.is_false(value):
+        return "true" if z3.is_true(value) else "false"
+    if z3.is_int_value(value):
+        return str(value.as_long())
+    if z3.is_rational_value(value):
+        number = float(Fraction(value.numerator_as_long(), value.denominator_as_long()))
+    elif z3.is_algebraic_value(value):
+        number = float(value.approx(6).as_fraction())
+    else:
+        return str(value)
+    if variable.sort == "Int":
+        return f"{number:g}"
+    unit = variable.unit
+    if not unit:
+        return f"{number:g}"
+    return f"{number / lookup(unit).factor:g} {unit}"
+
+
+def _constants(formula: z3.ExprRef) -> list[z3.ExprRef]:
+    found, seen, pending = [], set(), [formula]
+    while pending:
+        term = pending.pop()
+        if term.get_id() in seen:
+            continue
+        seen.add(term.get_id())
+        if z3.is_const(term) and term.decl().kind() == z3.Z3_OP_UNINTERPRETED:
+            found.append(term)
+        pending.extend(term.children())
+    return found

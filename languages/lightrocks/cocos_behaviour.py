@@ -1,0 +1,64 @@
+"""Context conditions on behaviour: guards, start and end conditions judged by the SMT
+solver (:mod:`.behaviour.conditions`). One pass over every region serves all codes."""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.languages.lightrocks.behaviour.conditions import Conditions, Finding
+from lightrocks.languages.lightrocks.behaviour.parameters import ParameterValues
+from lightrocks.metamodel import ast
+from lightrocks.workbench.cocos import coco
+from lightrocks.workbench.diagnostics import Severity
+
+
+def condition_findings(context: object) -> dict[str, list[Finding]]:
+    """Every finding on conditions of this run, by code, computed once."""
+    cached = context.cache.get("behaviour-conditions")
+    if cached is not None:
+        return cached
+    a = analysis(context)
+    values = ParameterValues(a.models)
+    found: dict[str, list[Finding]] = defaultdict(list)
+    if not a.typing.findings.get("LR0103") and not a.typing.findings.get("LR0304"):
+        for component in a.models.components:
+            for region in component.region.regions():
+                if region.loaded is component.loaded:
+                    for finding in Conditions(a.typing, values, component, region).findings():
+                        found[finding.code].append(finding)
+    context.cache["behaviour-conditions"] = found
+    return found
+
+
+def _conditions(code: str, severity: Severity, summary: str):
+    @coco(code, severity, summary)
+    def check(context: object) -> Iterator[tuple[ast.Position, str, str]]:
+        for finding in condition_findings(context).get(code, []):
+            yield finding.position, finding.message, finding.hint
+
+    return check
+
+
+never_holds = _conditions("LR0601", Severity.ERROR, "a guard or condition can hold")
+always_holds = _conditions("LR0602", Severity.WARNING, "a guard or condition does not always hold")
+holds_at_start = _conditions(
+    "LR0603", Severity.WARNING, "an end condition does not already hold when its command starts"
+)
+shadowed = _conditions("LR0604", Severity.WARNING, "no transition or condition is shadowed")
+overlapping = _conditions(
+    "LR0605", Severity.WARNING, "guards of transitions on one stimulus exclude each other"
+)
+exact_measurement = _conditions(
+    "LR0606", Severity.WARNING, "measured values are compared with a tolerance, not with =="
+)
+
+BEHAVIOUR_COCOS = (
+    never_holds,
+    always_holds,
+    holds_at_start,
+    shadowed,
+    overlapping,
+    exact_measurement,
+)
