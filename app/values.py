@@ -8,7 +8,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from lightrocks.app.errors import RunError
-from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.languages.lightrocks.syntax import parse_literal
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.metamodel.units import ANGLE, LENGTH, Dimension, UnitError, lookup
@@ -18,14 +18,12 @@ Noise = tuple[float, float]
 
 
 def _literal(text: str) -> Any:
-    """The expression of ``text`` parsed as a parameter default, so units and signs work."""
-    wrapper = f"statechart P {{ parameters {{ Real p = {text}; }} }}"
+    """``text`` read by the language's literal entry point, so units and signs work as in a
+    model and nothing but one expression can be written."""
     try:
-        unit = parse_statechart(wrapper, "<param>")
-    except SyntaxProblem:
+        return parse_literal(text, "<value>")
+    except (SyntaxProblem, RecursionError):
         raise RunError(f"'{text}' is not a literal value") from None
-    (block,) = unit.statechart.elements
-    return block.parameters[0].default if len(block.parameters) == 1 else None
 
 
 def _dimension(quantity: ast.Quantity) -> Dimension:
@@ -80,7 +78,10 @@ def typed_value(name: str, text: str, declared: tuple) -> Any:
     )
     if kind == "other":
         raise RunError(f"--param {name}: a {declared[1]} cannot be given on the command line")
-    value = _literal(text)
+    try:
+        value = _literal(text)
+    except RunError as error:
+        raise RunError(f"--param {name}: {name} expects {_expected(declared)}; {error}") from None
     if kind == "boolean":
         if not isinstance(value, ast.BooleanLiteral):
             raise wrong

@@ -16,6 +16,7 @@ from lightrocks.workbench.extensions import extensions_of
 
 GRAMMAR = Path(__file__).with_name("lightrocks.tx")
 FRAGMENTS = ("common", "statecharts", "expressions")
+LITERAL_GRAMMAR = Path(__file__).with_name("literal.tx")
 
 
 class LightRocksConverter(Converter):
@@ -53,3 +54,11 @@ def parse_statechart(text: str, file: str) -> ast.StatechartUnit:
     with paused_gc():
         tree = parse(GRAMMAR, FRAGMENTS, text, file, grammar_extensions())
         return LightRocksConverter(text, file, rules).convert(tree)
+
+
+def parse_literal(text: str, shown: str) -> ast.Expression:
+    """One value written outside a model, read by the language's own expression syntax (the
+    whole text must be one expression); raises ``metamodel.grammar.SyntaxProblem``."""
+    with paused_gc():
+        tree = parse(LITERAL_GRAMMAR, ("common", "expressions"), text, shown)
+        return LightRocksConverter(text, shown).convert(tree.value)

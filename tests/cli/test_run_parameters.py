@@ -101,3 +101,23 @@ def test_perception_noise_must_be_finite(noise: str, capsys: pytest.CaptureFixtu
     code = main(["run", str(SCREW_TASK), "--adapter", "dryrun", "--perception-noise", noise])
     assert code == 2
     assert "--perception-noise" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "1 mm; } do / robot.x(); parameters { Real z = 2",
+        "1 mm } } statechart Q {",
+        "robot.moveCartesian()",
+        "(" * 200 + "1 mm" + ")" * 200,
+    ],
+)
+def test_a_value_is_one_literal_never_model_text(
+    text: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A value is read by the language's literal entry point: text that would close a chart
+    and open another is a usage error, not a part of any chart."""
+    assert main(["run", str(SCREW_TASK), "--path", str(EXAMPLES), "--param", f"depth={text}"]) == 2
+    error = capsys.readouterr().err
+    assert "depth" in error
+    assert "internal error" not in error and "Traceback" not in error
