@@ -1,7 +1,8 @@
 """The findings cache on disk: the findings of a check and what it read, as JSON.
 
 Entries are data only and are checked field by field when read: a planted or corrupt entry
-is a miss. They are written whole and renamed into place (``put_json``).
+is a miss. The folder is bounded and written whole entry by entry
+(:class:`lightrocks.workbench.cachestore.Folder`).
 """
 
 from __future__ import annotations
@@ -10,7 +11,8 @@ import json
 from pathlib import Path
 from typing import Any
 
-from lightrocks.app.cachedir import cache_root, put_json
+from lightrocks.app.cachedir import cache_root
+from lightrocks.workbench.cachestore import Folder
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 from lightrocks.workbench.reads import Reads
 
@@ -19,18 +21,26 @@ _TYPES = (str, int, int, str, str, str, str)
 
 
 class DiskStore:
-    """Findings below ``folder`` (default: ``<user cache>/lightrocks/check``)."""
+    """Findings below ``folder`` (default: ``<user cache>/lightrocks/check``), at most
+    ``limit`` bytes of them (default: ``LIGHTROCKS_CACHE_BYTES``)."""
 
-    def __init__(self, folder: Path | None = None) -> None:
-        self.folder = folder or cache_root() / "check"
+    def __init__(self, folder: Path | None = None, limit: int | None = None) -> None:
+        self.entries = Folder(folder or cache_root() / "check", limit)
+
+    @property
+    def folder(self) -> Path:
+        return self.entries.folder
 
     def get(self, key: str) -> tuple[Reads, list[Diagnostic]] | None:
+        text = self.entries.get(key)
+        if text is None:
+            return None
         try:
-            data = json.loads((self.folder / key[:2] / key).read_text(encoding="utf-8"))
+            data = json.loads(text)
             if not isinstance(data, dict) or set(data) != {"reads", "findings"}:
                 return None
             return Reads.from_json(data["reads"]), [_finding(f) for f in data["findings"]]
-        except (OSError, ValueError, TypeError, RecursionError):
+        except (ValueError, TypeError, RecursionError):
             return None
 
     def put(self, key: str, reads: Reads, findings: list[Diagnostic]) -> None:
@@ -41,10 +51,7 @@ class DiskStore:
                 for f in findings
             ],
         }
-        try:
-            put_json(self.folder / key[:2] / key, entry)
-        except (OSError, ValueError):
-            return  # a cache that cannot be written only costs the next run a check
+        self.entries.put(key, json.dumps(entry, separators=(",", ":")))
 
 
 def _finding(data: Any) -> Diagnostic:

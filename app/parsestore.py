@@ -2,8 +2,8 @@
 
 Entries are data, never code: a unit is written as nested objects naming their class, and
 read back only into the dataclasses of :mod:`lightrocks.metamodel.ast`, so a planted or
-corrupt entry can at worst be a cache miss, never run anything. Entries are written to a
-private temporary file and renamed into place, so readers never see half an entry.
+corrupt entry can at worst be a cache miss, never run anything. The folder is bounded and
+written whole entry by entry (:class:`lightrocks.workbench.cachestore.Folder`).
 """
 
 from __future__ import annotations
@@ -13,9 +13,10 @@ from dataclasses import fields, is_dataclass
 from pathlib import Path
 from typing import Any
 
-from lightrocks.app.cachedir import cache_root, put_text
+from lightrocks.app.cachedir import cache_root
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem, paused_gc
+from lightrocks.workbench.cachestore import Folder
 
 CLASSES = {
     name: value
@@ -26,15 +27,23 @@ PROBLEM = "SyntaxProblem"
 
 
 class DiskStore:
-    """Parse results below ``folder`` (default: ``<user cache>/lightrocks/parse``)."""
+    """Parse results below ``folder`` (default: ``<user cache>/lightrocks/parse``), at most
+    ``limit`` bytes of them (default: ``LIGHTROCKS_CACHE_BYTES``)."""
 
-    def __init__(self, folder: Path | None = None) -> None:
-        self.folder = folder or cache_root() / "parse"
+    def __init__(self, folder: Path | None = None, limit: int | None = None) -> None:
+        self.entries = Folder(folder or cache_root() / "parse", limit)
+
+    @property
+    def folder(self) -> Path:
+        return self.entries.folder
 
     def get(self, key: str) -> ast.Unit | SyntaxProblem | None:
+        text = self.entries.get(key)
+        if text is None:
+            return None
         try:
-            result = read((self.folder / key[:2] / key).read_text(encoding="utf-8"))
-        except (OSError, ValueError, TypeError, KeyError, RecursionError):
+            result = read(text)
+        except (ValueError, TypeError, KeyError, RecursionError):
             return None
         return result if isinstance(result, ast.Unit | SyntaxProblem) else None
 
@@ -42,9 +51,9 @@ class DiskStore:
         try:
             with paused_gc():
                 text = dumps(result)
-            put_text(self.folder / key[:2] / key, text)
-        except (OSError, ValueError, RecursionError):
-            return  # a cache that cannot be written only costs the next run a parse
+        except (ValueError, RecursionError):
+            return  # a result that cannot be written only costs the next run a parse
+        self.entries.put(key, text)
 
 
 def dumps(result: ast.Unit | SyntaxProblem) -> str:

@@ -7,7 +7,7 @@ result, so an edit, a new model file or package folder, or other checking code i
 
 Two layers: whole check contexts in memory for the process (the language server, repeated
 checks from Python), and findings on disk between processes when a :class:`Store` is
-installed (the command line installs the one of :mod:`lightrocks.app.checkstore`).
+installed (the command line installs the bounded one of :mod:`lightrocks.app.checkstore`).
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ import os
 import sys
 from collections.abc import Iterable, Mapping
 from functools import cache
-from importlib.metadata import PackageNotFoundError, entry_points, version
+from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any, Protocol
 
+from lightrocks.workbench.cachestore import Memory, installed_version
 from lightrocks.workbench.diagnostics import Diagnostic
 from lightrocks.workbench.reads import Reads
 from lightrocks.workbench.sources import sources_digest
@@ -42,7 +43,7 @@ class Store(Protocol):
     def put(self, key: str, reads: Reads, findings: list[Diagnostic]) -> None: ...
 
 
-_memory: dict[str, tuple[Reads, Any]] = {}
+_memory: Memory[tuple[Reads, Any]] = Memory(MEMORY_ENTRIES)
 _store: Store | None = None
 
 
@@ -86,10 +87,7 @@ def remember(
     """Keep a check's ``value`` in memory and, read from disk alone, its findings on disk."""
     if not reads.complete:
         return
-    _memory.pop(entry, None)
-    _memory[entry] = (reads, value)
-    if len(_memory) > MEMORY_ENTRIES:
-        del _memory[next(iter(_memory))]
+    _memory.put(entry, (reads, value))
     if _store is not None and not any(Path(name) in texts for name in reads.files):
         _store.put(entry, reads, findings)
 
@@ -104,7 +102,7 @@ def code_digest() -> str:
         for entry in sorted(entry_points(group=group), key=lambda e: (e.name, e.value)):
             release = entry.dist.version if entry.dist is not None else ""
             digest.update(f"{group}\x00{entry.name}\x00{entry.value}\x00{release}\x00".encode())
-    digest.update(_version().encode() + b"\x00")
+    digest.update(installed_version().encode() + b"\x00")
     digest.update(sources_digest(places, (".py", ".tx")).encode())
     return digest.hexdigest()
 
@@ -127,10 +125,3 @@ def _sources(module: str) -> Path:
         raise ModuleNotFoundError(f"no sources for module {module!r}")
     origin = Path(spec.origin).resolve()
     return origin.parent if spec.submodule_search_locations or "." in module else origin
-
-
-def _version() -> str:
-    try:
-        return version("lightrocks")
-    except PackageNotFoundError:
-        return "unknown"

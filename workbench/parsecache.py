@@ -2,8 +2,9 @@
 
 Units are immutable dataclasses, so one parsed unit can serve every later check of the same
 text. Results live in memory for the process (the language server re-checks on every
-keystroke) and, when a :class:`Store` is installed, between processes (the CLI installs the
-on-disk store of :mod:`lightrocks.app.parsestore`). The key covers the installed
+keystroke, and keeps its results there only) and, when a :class:`Store` is installed,
+between processes (the command line installs the bounded on-disk store of
+:mod:`lightrocks.app.parsestore`). The key covers the installed
 version, a digest of the grammar and of the code that builds units, the language, the file
 name shown in positions and the text, so no stale result is ever returned.
 """
@@ -13,12 +14,12 @@ from __future__ import annotations
 import hashlib
 import importlib
 from functools import cache
-from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any, Protocol
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem, paused_gc
+from lightrocks.workbench.cachestore import Memory, installed_version
 from lightrocks.workbench.depth import TOO_DEEP, deepest, deepest_node
 from lightrocks.workbench.extensions import extensions_of
 from lightrocks.workbench.languages import Language
@@ -35,7 +36,7 @@ class Store(Protocol):
 
 FORMAT = "2"  # what a stored result means: raised to retire every result stored before
 MEMORY_ENTRIES = 10_000  # a large workspace plus the keystroke states of an editing session
-_memory: dict[str, Any] = {}
+_memory: Memory[Any] = Memory(MEMORY_ENTRIES)
 _store: Store | None = None
 
 
@@ -49,16 +50,13 @@ def parse(language: Language, text: str, shown: str) -> Any:
     """``language.parse(text, shown)``, answered from the cache when the content is known."""
     key = _key(language, text, shown)
     result = _memory.get(key)
-    if result is None and _store is not None:
-        result = _store.get(key)
     if result is None:
-        result = _parsed(language, text, shown)
-        if _store is not None:
-            _store.put(key, result)
-    _memory.pop(key, None)
-    _memory[key] = result  # most recently used last; the oldest entry goes first
-    if len(_memory) > MEMORY_ENTRIES:
-        del _memory[next(iter(_memory))]
+        result = _store.get(key) if _store is not None else None
+        if result is None:
+            result = _parsed(language, text, shown)
+            if _store is not None:
+                _store.put(key, result)
+        _memory.put(key, result)
     if isinstance(result, SyntaxProblem):
         raise result
     return result
@@ -83,7 +81,7 @@ def _key(language: Language, text: str, shown: str) -> str:
     digest = hashlib.blake2b(digest_size=20)
     grammar = grammar_digest(language.parse.__module__)
     extended = extensions_digest(language.name)
-    for part in (FORMAT, _version(), grammar, extended, language.name, shown):
+    for part in (FORMAT, installed_version(), grammar, extended, language.name, shown):
         digest.update(part.encode("utf-8", "surrogatepass") + b"\x00")
     digest.update(text.encode("utf-8", "surrogatepass"))
     return digest.hexdigest()
@@ -108,11 +106,3 @@ def extensions_digest(language: str) -> str:
         )
         digest.update(rules.encode("utf-8") + b"\x00")
     return digest.hexdigest()
-
-
-@cache
-def _version() -> str:
-    try:
-        return version("lightrocks")
-    except PackageNotFoundError:
-        return "unknown"

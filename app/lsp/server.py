@@ -3,7 +3,8 @@
 Every open, change and save re-checks the edited file and the files that depend on it, and
 publishes the findings of every file whose findings changed, so fixing an imported chart
 clears the findings of its importers. The features answer from an index of the checked
-files (:mod:`.index`); this module only wires requests to them.
+files (:mod:`.index`); this module only wires requests to them. Parse results stay in the
+server's memory: on disk, every state of a file being typed would be an entry.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from lightrocks.app.lsp.hover import hover as describe
 from lightrocks.app.lsp.index import Index
 from lightrocks.app.lsp.text import Text
 from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench import parsecache
 from lightrocks.workbench.diagnostics import Diagnostic
 from lightrocks.workbench.incremental import IncrementalCheck
 from lightrocks.workbench.languages import language_for
@@ -189,5 +191,6 @@ def code_actions(ls: LightRocksServer, params: lsp.CodeActionParams) -> list[lsp
 
 
 def main() -> int:
+    parsecache.use_store(None)  # memory only, whatever the command line installed
     server.start_io()
     return 0

@@ -12,6 +12,7 @@ import pytest
 
 from lightrocks.app import checkstore, cli
 from lightrocks.workbench import checkcache
+from lightrocks.workbench.cachestore import LEDGER
 from lightrocks.workbench.check import check
 from lightrocks.workbench.incremental import IncrementalCheck
 from lightrocks.workbench.sources import sources_digest
@@ -186,7 +187,7 @@ def test_a_planted_or_corrupt_entry_is_a_miss(
     CHANGES["an edit"](models)
     checkcache._memory.clear()
     first = cli.main(["check", str(models)]), capsys.readouterr().out
-    [entry] = [p for p in disk.rglob("*") if p.is_file()]
+    [entry] = [p for p in disk.rglob("*") if p.is_file() and p.name != LEDGER]
     stored = json.loads(entry.read_text(encoding="utf-8"))
     for planted in (
         "{",

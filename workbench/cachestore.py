@@ -1,0 +1,179 @@
+"""Where the caches keep their entries, bounded: in memory and in a folder on disk.
+
+Both drop the least recently used entries first. The memory holds a fixed number of
+entries. The folder holds at most a number of bytes (``LIGHTROCKS_CACHE_BYTES``, default
+256 MiB); its entries are files whose modification time is the time of their last use.
+Several processes may share a folder: an entry is written to a temporary file and renamed
+into place, and an entry that another process deleted is a miss, never an error.
+
+The folder's size is kept in a ledger, one line per entry written, so that a process does
+not list the folder to learn it. Only when the ledger passes the limit is the folder listed:
+the oldest entries are deleted down to three quarters of the limit, and the ledger is
+rewritten with the size found. A ledger that misses the entries of a process that wrote at
+the moment another rewrote it is therefore set right by the next eviction.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from contextlib import suppress
+from functools import cache
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import Generic, TypeVar
+
+LIMIT_VARIABLE = "LIGHTROCKS_CACHE_BYTES"
+DEFAULT_LIMIT = 256 * 2**20
+LEDGER = "ledger"
+"""The file of the sizes written, beside the folders of entries."""
+LEDGER_LINES = 1024
+"""A process reads the ledger again after writing this many entries, and a ledger longer
+than this is summed into one line when read, so that it stays short to read."""
+
+V = TypeVar("V")
+
+
+@cache
+def installed_version() -> str:
+    """The version of LightRocks, part of every cache key (``unknown`` when not installed)."""
+    try:
+        return version("lightrocks")
+    except PackageNotFoundError:
+        return "unknown"
+
+
+class Memory(Generic[V]):
+    """The ``entries`` most recently used values of a process."""
+
+    def __init__(self, entries: int) -> None:
+        self.entries = entries
+        self._values: dict[str, V] = {}  # most recently used last
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+    def get(self, key: str) -> V | None:
+        value = self._values.pop(key, None)
+        if value is not None:
+            self._values[key] = value
+        return value
+
+    def put(self, key: str, value: V) -> None:
+        self._values.pop(key, None)
+        self._values[key] = value
+        if len(self._values) > self.entries:
+            del self._values[next(iter(self._values))]
+
+    def values(self) -> list[V]:
+        return list(self._values.values())
+
+    def clear(self) -> None:
+        self._values.clear()
+
+
+def configured_limit() -> int:
+    """``LIGHTROCKS_CACHE_BYTES`` when it is a number of bytes, else ``DEFAULT_LIMIT``."""
+    setting = os.environ.get(LIMIT_VARIABLE, "").strip()
+    return int(setting) if setting.isdigit() else DEFAULT_LIMIT
+
+
+class Folder:
+    """Text entries below ``folder``, ``<key[:2]>/<key>``, at most ``limit`` bytes in all
+    (default: :func:`configured_limit`)."""
+
+    def __init__(self, folder: Path, limit: int | None = None) -> None:
+        self.folder = folder
+        self.limit = configured_limit() if limit is None else limit
+        self._size: int | None = None  # the folder's size as this process knows it
+        self._written = 0  # entries this process wrote
+
+    def get(self, key: str) -> str | None:
+        """The entry ``key``, now the most recently used; ``None`` when it is missing or
+        unreadable."""
+        path = self.folder / key[:2] / key
+        try:
+            text = path.read_text(encoding="utf-8")
+        except (OSError, ValueError):
+            return None
+        with suppress(OSError):
+            os.utime(path)
+        return text
+
+    def put(self, key: str, text: str) -> None:
+        """Keep ``text`` as the entry ``key``; a folder that cannot be written keeps nothing.
+        An entry larger than the limit is not kept: it would be the first to go."""
+        try:
+            data = text.encode("utf-8")
+            if len(data) > self.limit:
+                return
+            if self._size is None or self._written % LEDGER_LINES == 0:
+                self._size = self._ledger_size()  # what other processes wrote counts too
+            _write_atomic(self.folder / key[:2] / key, data)
+            with (self.folder / LEDGER).open("a", encoding="ascii") as ledger:
+                ledger.write(f"{len(data)}\n")
+            self._written += 1
+            self._size += len(data)
+            if self._size > self.limit:
+                self._size = self.evict(self.limit * 3 // 4)
+        except (OSError, ValueError):
+            return
+
+    def evict(self, goal: int) -> int:
+        """Delete the least recently used entries until at most ``goal`` bytes remain (the
+        files of other processes' unfinished writes count, and go when old); the size left."""
+        entries = sorted(_entries(self.folder))
+        size = sum(length for _, length, _ in entries)
+        for _, length, path in entries:
+            if size <= goal:
+                break
+            try:
+                os.unlink(path)
+            except FileNotFoundError:
+                pass
+            except OSError:
+                continue
+            size -= length
+        _write_atomic(self.folder / LEDGER, f"{size}\n".encode("ascii"))
+        return size
+
+    def _ledger_size(self) -> int:
+        """The size the ledger adds up to; a folder without a readable ledger is measured."""
+        try:
+            lines = (self.folder / LEDGER).read_text(encoding="ascii").split()
+        except (OSError, ValueError):
+            return self.evict(self.limit)
+        size = sum(int(line) for line in lines if line.isdigit())
+        if len(lines) > LEDGER_LINES:
+            _write_atomic(self.folder / LEDGER, f"{size}\n".encode("ascii"))
+        return size
+
+
+def _entries(folder: Path) -> list[tuple[int, int, str]]:
+    """Each file in the sub-folders of ``folder``: last use, size and path; files that
+    vanish while listed are left out."""
+    found = []
+    with suppress(OSError), os.scandir(folder) as shards:
+        for shard in shards:
+            if not shard.is_dir(follow_symlinks=False):
+                continue
+            with suppress(OSError), os.scandir(shard.path) as files:
+                for file in files:
+                    with suppress(OSError):
+                        status = file.stat(follow_symlinks=False)
+                        found.append((status.st_mtime_ns, status.st_size, file.path))
+    return found
+
+
+def _write_atomic(target: Path, data: bytes) -> None:
+    """Write ``data`` as ``target`` in a private folder: staged in a temporary file and
+    renamed into place, so readers never see half an entry."""
+    target.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+    handle, staged = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")
+    try:
+        with os.fdopen(handle, "wb") as file:
+            file.write(data)
+        os.replace(staged, target)
+    except BaseException:
+        Path(staged).unlink(missing_ok=True)
+        raise
