@@ -25,6 +25,7 @@ import unicodedata
 
 from lightrocks import runtime
 
+DOMAIN = "_domain"  # the generator's own module of device types and cells
 _PLAIN = re.compile(r"[A-Za-z][A-Za-z0-9]*(?:_[A-Za-z0-9]+)*")
 _STATE_CLASSES = (runtime.CompositeComponent, runtime.ActionComponent, runtime.Final)
 
@@ -77,3 +78,14 @@ def attribute(target: str, name: str) -> str:
     if plain and not keyword.iskeyword(name) and not name.startswith("__"):
         return f"{target}.{name}"
     return f"getattr({target}, {name!r})"
+
+
+def module_parts(qualified_name: str) -> list[str]:
+    """The package path of a statechart's module (the domain module is the generator's)."""
+    if qualified_name == DOMAIN:
+        return [DOMAIN]
+    return [identifier(part) for part in qualified_name.split(".")]
+
+
+def module_path(qualified_name: str) -> str:
+    return "/".join(module_parts(qualified_name)) + ".py"
