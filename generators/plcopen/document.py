@@ -20,7 +20,12 @@ from lightrocks.generators.sfc_iec61131.ir import Block, Transition, Unit, Varia
 
 NAMESPACE = "http://www.plcopen.org/xml/tc6_0201"
 XHTML = "http://www.w3.org/1999/xhtml"
-ELEMENTARY = {"BOOL", "REAL", "LREAL", "DINT", "INT", "SINT", "LINT", "STRING", "TIME"}
+# ST elementary type -> its element in TC6 XML, where the string types alone are lowercase
+ELEMENTARY = {
+    **{name: name for name in ("BOOL", "REAL", "LREAL", "DINT", "INT", "SINT", "LINT", "TIME")},
+    "STRING": "string",
+    "WSTRING": "wstring",
+}
 ARRAY = re.compile(r"ARRAY\[(\d+)\.\.(\d+)\] OF (\w+)")
 COLUMN, ROW = 200, 60
 
@@ -49,7 +54,7 @@ def _text(parent: ET.Element, tag: str, lines: list[str] | tuple[str, ...]) -> N
 def _type(parent: ET.Element, tag: str, st_type: str) -> None:
     holder = _add(parent, tag)
     if st_type in ELEMENTARY:
-        _add(holder, st_type)
+        _add(holder, ELEMENTARY[st_type])
     else:
         _add(holder, "derived", name=st_type)
 

@@ -167,3 +167,37 @@ def test_defaults_are_initial_values_of_their_structure(schema: etree.XMLSchema)
     assert schema.validate(root), schema.error_log
     [share] = root.findall(".//p:pou[@name='Dial']//p:inputVars/p:variable[@name='share']", NS)
     assert share.find("p:initialValue/p:simpleValue", NS).get("value") == "3.5"
+
+
+ELEMENTARY = """statechart Kinds {
+  parameters {
+    String label = "a";
+    Integer count = 1;
+    Length width = 2 mm;
+    Boolean open = true;
+  }
+
+  initial state A;
+  final state B;
+  A -> B after(200 ms);
+}
+"""
+
+
+def test_every_elementary_type_is_an_element_of_the_schema(
+    schema: etree.XMLSchema, tmp_path: Path
+) -> None:
+    """Each type is written as the schema spells it: ``string``, ``BOOL``, ``DINT``, …"""
+    model = tmp_path / "Kinds.lr"
+    model.write_text(ELEMENTARY)
+    root = _parse(generate("plcopen", [model], search=[tmp_path])["Kinds.xml"])
+    assert schema.validate(root), schema.error_log
+    inputs = root.findall(".//p:pou[@name='Kinds']//p:inputVars/p:variable", NS)
+    kinds = {v.get("name"): etree.QName(v.find("p:type/*", NS)).localname for v in inputs}
+    assert kinds == {
+        "execute": "BOOL",
+        "label": "string",
+        "count": "DINT",
+        "width": "REAL",
+        "open": "BOOL",
+    }
