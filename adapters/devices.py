@@ -36,6 +36,7 @@ from lightrocks.runtime.contract import (
     Command,
     CommandResult,
     StopCondition,
+    TickListener,
     Vector3,
     Wrench,
 )
@@ -337,16 +338,8 @@ class SimulatedCell:
         return SimpleNamespace(time=self.time, **devices)
 
     def execute(
-        self,
-        device: str,
-        command: str,
-        args: Mapping[str, Any],
-        stop: Sequence[StopCondition],
-        budget: float,
-    ) -> CommandResult:
-        return self.execute_all([Command(device, command, args, stop, budget)])[0]
-
-    def execute_all(self, commands: Sequence[Command]) -> list[CommandResult]:
+        self, commands: Sequence[Command], on_tick: TickListener | None = None
+    ) -> list[CommandResult]:
         """Start the commands in order and tick them in one loop, each until its own stop
         condition or budget; the arm holds as soon as its command has ended."""
         devices = [c.device for c in commands]
@@ -376,6 +369,7 @@ class SimulatedCell:
             while remaining:
                 tick()
                 now = self.time
+                going_on = False  # the stop conditions of a command were checked, none held
                 for entry in pending:
                     index, c, settled, value, first_holding, end = entry
                     running = c
@@ -384,6 +378,8 @@ class SimulatedCell:
                         fired = first_holding(live)
                         if fired is not None:
                             result = CommandResult(fired, value)
+                        else:
+                            going_on = True
                     if result is None:
                         if now < end:
                             continue
@@ -394,6 +390,11 @@ class SimulatedCell:
                         self.hold()  # the other commands go on
                 if len(pending) > remaining:
                     pending = [entry for entry in pending if results[entry[0]] is None]
+                if going_on and on_tick is not None:
+                    try:
+                        on_tick(live)
+                    except Exception as exc:
+                        raise AdapterError(f"tick listener failed: {exc!r}") from exc
         except AdapterError:
             raise
         except Exception as exc:

@@ -25,7 +25,7 @@ from lightrocks.runtime.contract import (
     AdapterError,
     Command,
     CommandResult,
-    StopCondition,
+    TickListener,
     Vector3,
     Wrench,
 )
@@ -111,16 +111,8 @@ class DryRunAdapter:
     # -- commands -------------------------------------------------------------------------
 
     def execute(
-        self,
-        device: str,
-        command: str,
-        args: Mapping[str, Any],
-        stop: Sequence[StopCondition],
-        budget: float,
-    ) -> CommandResult:
-        return self.execute_all([Command(device, command, args, stop, budget)])[0]
-
-    def execute_all(self, commands: Sequence[Command]) -> list[CommandResult]:
+        self, commands: Sequence[Command], on_tick: TickListener | None = None
+    ) -> list[CommandResult]:
         """Tick the commands together, each until its own stop condition or budget."""
         devices = [c.device for c in commands]
         if len(set(devices)) < len(devices):
@@ -132,10 +124,18 @@ class DryRunAdapter:
         try:
             while None in results:
                 self._time = round(self._time + self.step, 9)
+                going_on = None  # the first snapshot whose stop conditions all failed
                 for index, run in enumerate(runs):
                     if results[index] is None:
                         current = commands[index]
-                        results[index] = run(self._time - start)
+                        results[index], checked = run(self._time - start)
+                        if going_on is None:
+                            going_on = checked
+                if going_on is not None and on_tick is not None:
+                    try:
+                        on_tick(going_on)
+                    except Exception as exc:
+                        raise AdapterError(f"tick listener failed: {exc!r}") from exc
         except AdapterError:
             raise
         except Exception as exc:
@@ -143,8 +143,9 @@ class DryRunAdapter:
             raise AdapterError(f"stop condition of {name} failed: {exc!r}") from exc
         return results  # type: ignore[return-value]
 
-    def _run(self, c: Command) -> Callable[[float], CommandResult | None]:
-        """Start one command; the returned function ticks it and tells how it ended."""
+    def _run(self, c: Command) -> Callable[[float], tuple[CommandResult | None, Any]]:
+        """Start one command; the returned function ticks it and tells how it ended, and the
+        snapshot it checked the stop conditions on when none of them held."""
         if c.command not in self._commands.get(c.device, ()):
             raise AdapterError(f"unknown command {c.device}.{c.command}")
         self.calls.append((c.device, c.command, dict(c.args)))
@@ -161,27 +162,27 @@ class DryRunAdapter:
                 state[sensor] = self._neutral[c.device][sensor]
         settled, value = False, None
 
-        def tick(elapsed: float) -> CommandResult | None:
+        def tick(elapsed: float) -> tuple[CommandResult | None, Any]:
             nonlocal settled, value
             if not settled and elapsed >= self.duration - 1e-9:
                 settled, value = True, self._settle(c.device, c.command, c.args)
             if settled and planned not in (None, TIMEOUT):
                 scripted.pop(0)
-                return CommandResult(planned, value)
+                return CommandResult(planned, value), None
             if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
                 if elapsed >= c.budget - 1e-9:
                     scripted.pop(0)
-                    return CommandResult(TIMEOUT)
-                return None
+                    return CommandResult(TIMEOUT), None
+                return None, None
             snapshot = self.snapshot()
             for condition in c.stop:
                 if condition.holds(snapshot):
                     if condition.name == planned:  # it ended as scripted: used
                         scripted.pop(0)
-                    return CommandResult(condition.name, value)
+                    return CommandResult(condition.name, value), None
             if elapsed >= c.budget - 1e-9:
-                return CommandResult(TIMEOUT)
-            return None
+                return CommandResult(TIMEOUT), snapshot
+            return None, snapshot
 
         return tick
 

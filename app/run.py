@@ -72,9 +72,9 @@ def drive(
     The binding is checked before the trace file is opened, so a run that cannot start
     leaves no file behind. A cell that does not fit the adapter is the model's mistake.
     """
-    from lightrocks.app.monitor.sampling import SampledAdapter
     from lightrocks.runtime import BindingError, Trace
     from lightrocks.runtime.binding import bind
+    from lightrocks.runtime.sampling import Sampler
 
     chart = cls(**params)
     steps = [parse_delay(e) if e.startswith("+") else e for e in events]
@@ -98,9 +98,9 @@ def drive(
     if progress is not None:
         recorder.listeners.append(progress)
     if watch is not None:
-        watch.attach(recorder)
+        watch.attach(recorder)  # first: a paused tick is sampled once the run goes on
     if adapter is not None:
-        adapter = SampledAdapter(adapter, recorder, None if watch is None else watch.on_tick)
+        Sampler(recorder, adapter.devices()).attach()
     try:
         chart.start(adapter, trace=recorder)
         for step in steps:

@@ -25,7 +25,7 @@ import pinocchio as pin
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
 from lightrocks.adapters.scene_registry import load_model
-from lightrocks.runtime.contract import StopCondition
+from lightrocks.runtime.contract import Command, StopCondition
 
 STOPS = [
     StopCondition("force", lambda s: abs(s.robot.wrench.force.z) > 1e3),
@@ -56,7 +56,7 @@ def adapter_seconds(kind: type, seconds: float) -> float:
     goal = tcp * pin.SE3(pin.exp3(np.array([0.0, 0.0, np.deg2rad(30)])), np.array([0, 0.1, 0]))
     args = {"goal": goal, "speed": 0.02, "angular_speed": 0.1}
     start = time.process_time()
-    adapter.execute("robot", "moveCartesian", args, STOPS, budget=seconds)
+    adapter.execute([Command("robot", "moveCartesian", args, STOPS, seconds)])
     spent = time.process_time() - start
     adapter.close()
     return spent / round(seconds * 1000)

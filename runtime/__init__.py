@@ -17,7 +17,6 @@ from lightrocks.runtime.contract import (
     AdapterError,
     Command,
     CommandResult,
-    ConcurrentAdapter,
     Snapshot,
     StopCondition,
     Vector3,
@@ -34,6 +33,7 @@ from lightrocks.runtime.executor import (
 )
 from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
 from lightrocks.runtime.safety import Bound, SafeRange
+from lightrocks.runtime.sampling import Sampler
 from lightrocks.runtime.states import (
     Action,
     Choice,
@@ -68,7 +68,6 @@ __all__ = [
     "Component",
     "Composite",
     "CompositeComponent",
-    "ConcurrentAdapter",
     "Condition",
     "Environment",
     "Executor",
@@ -79,6 +78,7 @@ __all__ = [
     "Parallel",
     "ParallelComponent",
     "SafeRange",
+    "Sampler",
     "SceneObject",
     "Snapshot",
     "State",

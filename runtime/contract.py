@@ -1,9 +1,11 @@
 """The contract between generated code and robot adapters.
 
-Generated code never talks to a simulator or a robot directly: an action state hands one
-device command and its stop conditions to an :class:`Adapter`, which runs its control loop,
-evaluates the stop conditions on every control tick and reports which one fired. All values
-crossing this boundary are in SI units; frames are ``pinocchio.SE3`` in the world frame.
+Generated code never talks to a simulator or a robot directly: an action state hands its
+device command and stop conditions to an :class:`Adapter` (the actions of orthogonal regions
+hand theirs together), which runs its control loop, evaluates the stop conditions on every
+control tick, reports which one fired, and tells the run of its ticks, so that the run's
+listeners can sample sensors or pause without wrapping the adapter. All values crossing this
+boundary are in SI units; frames are ``pinocchio.SE3`` in the world frame.
 """
 
 from __future__ import annotations
@@ -107,7 +109,7 @@ class CommandResult:
 
 @dataclass(frozen=True)
 class Command:
-    """One device command with its stop conditions and budget, as ``execute`` takes it."""
+    """One device command with its stop conditions and budget, as ``Adapter.execute`` runs it."""
 
     device: str
     command: str
@@ -123,16 +125,13 @@ class AdapterError(RuntimeError):
     """A fault of the device or the adapter; the runtime turns it into the outcome ``error``."""
 
 
+TickListener = Callable[[Snapshot], None]
+"""Told of a control tick with the live snapshot of that tick (valid during the call only)."""
+
+
 @runtime_checkable
 class Adapter(Protocol):
-    """A robot API: the devices of one cell, a clock, and a control loop.
-
-    ``execute`` blocks until the first stop condition holds (checked in declaration order on
-    every control tick), or until ``budget`` seconds of adapter time have passed (outcome
-    ``TIMEOUT``). Commands without motion (gripper, camera) finish with the first condition
-    that holds once the command has settled. Whatever way a command ends, the devices are left
-    holding still and compliant.
-    """
+    """A robot API: the devices of one cell, a clock, and a control loop."""
 
     @property
     def time(self) -> float:
@@ -148,14 +147,24 @@ class Adapter(Protocol):
         ...
 
     def execute(
-        self,
-        device: str,
-        command: str,
-        args: Mapping[str, Any],
-        stop: Sequence[StopCondition],
-        budget: float,
-    ) -> CommandResult:
-        """Run one device command until a stop condition holds or the budget is spent."""
+        self, commands: Sequence[Command], on_tick: TickListener | None = None
+    ) -> Sequence[CommandResult]:
+        """Run the commands together until each has ended; their results in their order.
+
+        The commands start in the given order and are ticked in one control loop. Each ends
+        with the first of its stop conditions that holds (checked in declaration order on
+        every control tick; for a command without motion, such as a gripper's or a camera's,
+        once it has settled), or with ``TIMEOUT`` when its ``budget`` of adapter time is
+        spent; its device then holds still and compliant, whatever way it ended. Two
+        commands for one device are refused with ``AdapterError`` unless the device type is
+        ``<<concurrent>>`` for this adapter; an adapter that runs one command at a time
+        refuses several the same way.
+
+        ``on_tick(snapshot)`` is called once per control tick at which the stop conditions
+        of a command were checked and none of them held. It may block (the adapter's time
+        stands still meanwhile) or raise: the commands then stop, the devices hold, and the
+        exception propagates.
+        """
         ...
 
     def hold(self) -> None:
@@ -164,20 +173,4 @@ class Adapter(Protocol):
 
     def close(self) -> None:
         """Release simulator or hardware resources."""
-        ...
-
-
-@runtime_checkable
-class ConcurrentAdapter(Adapter, Protocol):
-    """An adapter that can run commands of different devices at once (orthogonal regions).
-
-    ``execute_all`` starts the commands in the given order and ticks them in one control
-    loop; each ends at its own first stop condition (once settled) or its own budget, and
-    its device then holds. It returns when every command has ended, the results in the
-    order of the commands. Two commands for one device are refused with ``AdapterError``
-    unless the device type is ``<<concurrent>>`` for this adapter.
-    """
-
-    def execute_all(self, commands: Sequence[Command]) -> Sequence[CommandResult]:
-        """Run the commands together until each has ended."""
         ...

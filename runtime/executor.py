@@ -8,7 +8,7 @@ one ``error`` outcome, and a run always ends with a ``finished`` or ``interrupte
 
 Orthogonal regions react in declaration order within one step; the completions they cause
 wait in a queue and are handled one after the other. Actions entered inside regions do not
-block: their commands are collected and run together (``execute_all``) once the step has
+block: their commands are collected and run together (one ``execute``) once the step has
 nothing else to do, and a command stopped for an event or a time event of another region
 starts again if its action is still active after the reaction.
 """
@@ -574,11 +574,9 @@ class Executor:
         return self._settled(request, result)
 
     def _call(self, requests: list[_Request]) -> list[Any]:
-        """One command through ``execute``, several at once through ``execute_all``."""
-        if len(requests) == 1:
-            c = requests[0].command
-            return [self.adapter.execute(c.device, c.command, c.args, c.stop, c.budget)]
-        return list(self.adapter.execute_all([request.command for request in requests]))
+        """Run the commands together; the trace's tick listeners hear their control ticks."""
+        on_tick = self.trace.tick if self.trace.tick_listeners else None
+        return list(self.adapter.execute([r.command for r in requests], on_tick=on_tick))
 
     def _run_commands(self) -> Done:
         """Run the commands of the actions entered in regions together, one per device."""
@@ -590,9 +588,6 @@ class Executor:
             return self._error(
                 actions[0], "no adapter bound to run a device command", actions[0].LOCATION
             )
-        if len(actions) > 1 and not hasattr(self.adapter, "execute_all"):
-            message = "the adapter cannot run commands of several regions at once"
-            return self._error(actions[0], message, actions[0].LOCATION)
         s = self.snapshot()
         given = [self._arguments(action, s) for action in actions]
         for action, arguments in zip(actions, given, strict=True):

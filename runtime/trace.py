@@ -11,7 +11,7 @@ from typing import IO, Any
 
 import numpy as np
 
-from lightrocks.runtime.contract import Vector3, Wrench
+from lightrocks.runtime.contract import Snapshot, TickListener, Vector3, Wrench
 from lightrocks.runtime.environment import SceneObject, object_name
 from lightrocks.runtime.frames import Frame
 
@@ -38,28 +38,37 @@ def to_json(value: Any) -> Any:
     return repr(value)
 
 
+RecordListener = Callable[[Record], None]
+"""Told of every trace record as it is written."""
+
+
 class Trace:
-    """Collects records in memory, optionally writes them as JSON lines, and tells listeners."""
+    """What a run tells the outside: its records, kept in memory and told to the record
+    listeners (a JSON-lines file among them), and its control ticks, told to the tick
+    listeners (sampling, a monitor's pauses). Listeners run on the run's thread: one that
+    blocks pauses the run, one that raises ``runtime.Abort`` stops it safely."""
 
     def __init__(self, file: str | Path | IO[str] | None = None, *, keep: bool = True) -> None:
         self.keep = keep
         """Whether records stay in memory (``records``); without it, a file or a listener, the
         trace is disabled and the executor builds no record at all."""
         self.records: list[Record] = []
-        self.listeners: list[Callable[[Record], None]] = []
-        self._owned = isinstance(file, str | Path)
-        self._stream: IO[str] | None = (
-            open(file, "w", encoding="utf-8") if isinstance(file, str | Path) else file  # noqa: SIM115
-        )
-        self.failure: OSError | None = None
-        """Why the file could not be written (a full disk): the records stay in memory and
-        the run goes on, since a trace must never stop a robot half-way."""
+        self.listeners: list[RecordListener] = []
+        self.tick_listeners: list[TickListener] = []
+        self._file = None if file is None else TraceFile(file)
+        if self._file is not None:
+            self.listeners.append(self._file.write)
         self._time, self._rounded = math.nan, math.nan  # the last time written, and as written
 
     @property
     def enabled(self) -> bool:
         """Whether a record would go anywhere."""
-        return self.keep or self._stream is not None or bool(self.listeners)
+        return self.keep or bool(self.listeners)
+
+    @property
+    def failure(self) -> OSError | None:
+        """Why the file could not be written (see ``TraceFile.failure``)."""
+        return None if self._file is None else self._file.failure
 
     def write(self, time: float, kind: str, **fields: Any) -> None:
         self.record(time, kind, fields)
@@ -71,10 +80,37 @@ class Trace:
         record: Record = {"time": self._rounded, "kind": kind, **fields}
         if self.keep:
             self.records.append(record)
-        if self._stream is not None:
-            self._guarded(self._stream.write, json.dumps(record) + "\n")
         for listener in self.listeners:
             listener(record)
+
+    def tick(self, snapshot: Snapshot) -> None:
+        """A control tick of a running command (``Adapter.execute``'s ``on_tick``)."""
+        for listener in self.tick_listeners:
+            listener(snapshot)
+
+    def close(self) -> None:
+        if self._file is not None:
+            self._file.close()
+
+    def of_kind(self, *kinds: str) -> list[Record]:
+        return [r for r in self.records if r["kind"] in kinds]
+
+
+class TraceFile:
+    """Writes records as JSON lines to a file (opened and closed here) or an open stream."""
+
+    def __init__(self, file: str | Path | IO[str]) -> None:
+        self._owned = isinstance(file, str | Path)
+        self._stream: IO[str] | None = (
+            open(file, "w", encoding="utf-8") if isinstance(file, str | Path) else file  # noqa: SIM115
+        )
+        self.failure: OSError | None = None
+        """Why the file could not be written (a full disk): the records stay in memory and
+        the run goes on, since a trace must never stop a robot half-way."""
+
+    def write(self, record: Record) -> None:
+        if self._stream is not None:
+            self._guarded(self._stream.write, json.dumps(record) + "\n")
 
     def close(self) -> None:
         if self._stream is not None and self._owned:
@@ -90,6 +126,3 @@ class Trace:
             if self._owned and stream is not None:
                 with contextlib.suppress(OSError):
                     stream.close()
-
-    def of_kind(self, *kinds: str) -> list[Record]:
-        return [r for r in self.records if r["kind"] in kinds]

@@ -1,5 +1,5 @@
-"""A watched run: the page's feed and the execution control, hooked into the trace's
-listeners (one call per record) and the adapter's control ticks."""
+"""A watched run: the page's feed and the execution control, a listener of the trace's records
+and of the control ticks of its commands."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from typing import Any
 from lightrocks.app.monitor.control import RunControl
 from lightrocks.app.monitor.feed import Feed
 from lightrocks.app.monitor.server import Monitor
-from lightrocks.runtime import Abort, Trace
+from lightrocks.runtime import Abort, Snapshot, Trace
 
 DEPTH = "3"
 """Task, skill and action: the levels the page highlights."""
@@ -33,6 +33,7 @@ class Watch:
     def attach(self, trace: Trace) -> None:
         self.trace = trace
         trace.listeners.append(self.on_record)
+        trace.tick_listeners.append(self.on_tick)
 
     def on_record(self, record: dict[str, Any]) -> None:
         self.monitor.feed.publish(record)
@@ -43,8 +44,8 @@ class Watch:
         self.control.stops_at(record)
         self._hold(record["time"])
 
-    def on_tick(self, time: float) -> None:
-        self._hold(time)
+    def on_tick(self, snapshot: Snapshot) -> None:
+        self._hold(snapshot.time)
 
     def _hold(self, time: float) -> None:
         if self.control.paused and self.trace is not None:
@@ -64,12 +65,11 @@ class Watch:
 
 def task_svg(model: Path, search_path: list[Path], name: str) -> str:
     """The Graphviz SVG of the model's statechart, nested down to its actions."""
-    from lightrocks.workbench.check import check
-    from lightrocks.workbench.generators import GenerationRequest, load_generator
+    from lightrocks.app import pipeline
+    from lightrocks.app.specs import generate_spec
 
-    context = check([model], search_path)
-    request = GenerationRequest(context, [model], {"render": "svg", "depth": DEPTH}, None)
-    drawn = load_generator("dot").generate(request)
+    spec = generate_spec([model], search_path, "dot", {"render": "svg", "depth": DEPTH})
+    drawn = pipeline.generate(spec)
     svg = next(v for k, v in drawn.items() if k.endswith(f"{name}.svg"))
     text = svg.decode("utf-8") if isinstance(svg, bytes) else svg
     return text[text.index("<svg") :]

@@ -8,7 +8,14 @@ import pytest
 
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
-from lightrocks.runtime.contract import Adapter, AdapterError, StopCondition, Vector3, Wrench
+from lightrocks.runtime.contract import (
+    Adapter,
+    AdapterError,
+    Command,
+    StopCondition,
+    Vector3,
+    Wrench,
+)
 
 DONE = StopCondition("done", lambda s: s.gripper.done)
 
@@ -53,14 +60,16 @@ def test_snapshot_has_every_sensor(adapter):
 def test_bad_commands_raise_adapter_errors(adapter, device, command, args, message):
     before = adapter.snapshot().robot.q
     with pytest.raises(AdapterError, match=message):
-        adapter.execute(device, command, args, [], 1.0)
+        adapter.execute([Command(device, command, args, [], 1.0)])
     assert np.allclose(adapter.snapshot().robot.q, before, atol=1e-3)
 
 
 def test_failing_stop_predicate_is_an_adapter_error(adapter):
     broken = StopCondition("broken", lambda s: s.robot.nonsense > 0)
     with pytest.raises(AdapterError, match="stop condition"):
-        adapter.execute("robot", "moveJoint", {"q": adapter.snapshot().robot.q}, [broken], 1.0)
+        adapter.execute(
+            [Command("robot", "moveJoint", {"q": adapter.snapshot().robot.q}, [broken], 1.0)]
+        )
 
 
 @pytest.mark.parametrize("kind", [MujocoAdapter, PinocchioAdapter])
@@ -73,17 +82,21 @@ def test_timeout_leaves_the_robot_holding_still(adapter):
     tcp = adapter.snapshot().robot.tcp
     goal = pin.SE3(tcp.rotation, tcp.translation + np.array([0.0, 0.2, 0.0]))
     t0 = adapter.time
-    result = adapter.execute("robot", "moveCartesian", {"goal": goal}, [], budget=0.5)
+    result = adapter.execute([Command("robot", "moveCartesian", {"goal": goal}, [], 0.5)])[0]
     assert result.outcome == "timeout"
     assert adapter.time - t0 == pytest.approx(0.5, abs=1.5e-3)
     here = adapter.snapshot().robot.tcp.translation
-    adapter.execute("robot", "moveCartesian", {"goal": adapter.snapshot().robot.tcp}, [], 0.5)
+    adapter.execute(
+        [Command("robot", "moveCartesian", {"goal": adapter.snapshot().robot.tcp}, [], 0.5)]
+    )
     assert np.linalg.norm(adapter.snapshot().robot.tcp.translation - here) < 0.01
 
 
 def test_first_condition_in_order_wins(adapter):
     stop = [StopCondition("first", lambda s: True), StopCondition("second", lambda s: True)]
-    result = adapter.execute("robot", "moveJoint", {"q": adapter.snapshot().robot.q}, stop, 1.0)
+    result = adapter.execute(
+        [Command("robot", "moveJoint", {"q": adapter.snapshot().robot.q}, stop, 1.0)]
+    )[0]
     assert result.outcome == "first"
 
 
@@ -92,20 +105,60 @@ def test_goal_relative_to_a_scene_object(adapter):
     above = pin.SE3(adapter.snapshot().robot.tcp.rotation, np.array([0.0, 0.02, 0.2]))
     reached = StopCondition("reached", lambda s: s.robot.goalReached)
     result = adapter.execute(
-        "robot", "moveCartesian", {"goal": above, "ref": "block"}, [reached], 3.0
-    )
+        [Command("robot", "moveCartesian", {"goal": above, "ref": "block"}, [reached], 3.0)]
+    )[0]
     assert result.outcome == "reached"
     expected = (block * above).translation
     assert np.linalg.norm(adapter.snapshot().robot.tcp.translation - expected) < 1e-3
 
 
 def test_gripper_closes_empty_and_opens(adapter):
-    assert adapter.execute("gripper", "close", {}, [DONE], 2.0).outcome == "done"
+    assert adapter.execute([Command("gripper", "close", {}, [DONE], 2.0)])[0].outcome == "done"
     snap = adapter.snapshot()
     assert snap.gripper.width < 0.002
     assert snap.gripper.holding is False
-    assert adapter.execute("gripper", "open", {}, [DONE], 2.0).outcome == "done"
+    assert adapter.execute([Command("gripper", "open", {}, [DONE], 2.0)])[0].outcome == "done"
     assert adapter.snapshot().gripper.width == pytest.approx(0.08, abs=1e-3)
+
+
+def test_ticks_are_told_where_the_stop_conditions_hold_none(adapter):
+    ticks: list[int] = []
+    t0 = adapter.time
+    later = StopCondition("later", lambda s: s.time - t0 > 0.0495)
+    q = adapter.snapshot().robot.q
+    (result,) = adapter.execute(
+        [Command("robot", "moveJoint", {"q": q}, [later], 1.0)],
+        lambda s: ticks.append(round((s.time - t0) * 1000)),
+    )
+    assert result.outcome == "later"
+    assert ticks == list(range(1, 50))  # in milliseconds; not the 50th, where it held
+
+
+def test_a_gripper_command_tells_its_ticks_once_it_has_settled(adapter):
+    ticks: list[tuple[float, bool]] = []
+    t0 = adapter.time
+    after = StopCondition("after", lambda s: s.time - t0 > 0.6)
+    adapter.execute(
+        [Command("gripper", "close", {}, [after], 1.0)],
+        lambda s: ticks.append((s.time - t0, s.gripper.done)),
+    )
+    assert ticks and all(done for _, done in ticks)
+    assert 0.3 < ticks[0][0] < 0.6
+
+
+def test_commands_of_two_devices_run_in_one_loop_that_tells_each_tick_once(adapter):
+    ticks: list[int] = []
+    t0 = adapter.time
+    q = adapter.snapshot().robot.q
+    soon = StopCondition("soon", lambda s: s.time - t0 > 0.0995)
+    commands = [
+        Command("robot", "moveJoint", {"q": q}, [soon], 1.0),
+        Command("gripper", "close", {}, [DONE], 1.0),
+    ]
+    robot, gripper = adapter.execute(commands, lambda s: ticks.append(round((s.time - t0) * 1000)))
+    assert (robot.outcome, gripper.outcome) == ("soon", "done")
+    assert adapter.time - t0 > 0.3, "the gripper closed on after the arm's command ended"
+    assert ticks == list(range(1, 100)), "the closing gripper checks nothing until it settles"
 
 
 def test_measurements_is_a_dict(adapter):

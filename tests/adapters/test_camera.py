@@ -5,14 +5,15 @@ import pytest
 
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
-from lightrocks.runtime.contract import StopCondition
+from lightrocks.runtime.contract import Command, StopCondition
 
 DONE = [StopCondition("done", lambda s: s.camera.done)]
 
 
 def localize(adapter, count=3):
     return [
-        adapter.execute("camera", "localize", {"target": "block"}, DONE, 1.0) for _ in range(count)
+        adapter.execute([Command("camera", "localize", {"target": "block"}, DONE, 1.0)])[0]
+        for _ in range(count)
     ]
 
 

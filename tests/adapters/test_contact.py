@@ -3,14 +3,16 @@
 import numpy as np
 import pinocchio as pin
 
-from lightrocks.runtime.contract import StopCondition
+from lightrocks.runtime.contract import Command, StopCondition
 
 FINGERTIP_BELOW_TCP = 0.015
 BLOCK_TOP = 0.15
 
 
 def test_tared_wrench_at_rest_is_small(adapter):
-    adapter.execute("robot", "moveCartesian", {"goal": adapter.snapshot().robot.tcp}, [], 0.5)
+    adapter.execute(
+        [Command("robot", "moveCartesian", {"goal": adapter.snapshot().robot.tcp}, [], 0.5)]
+    )
     wrench = adapter.snapshot().robot.wrench
     assert wrench.force.norm() < 0.1
     assert wrench.torque.norm() < 0.1
@@ -20,7 +22,9 @@ def test_move_down_stops_on_the_block(adapter):
     tcp = adapter.snapshot().robot.tcp
     goal = pin.SE3(tcp.rotation, tcp.translation - np.array([0.0, 0.0, 0.2]))
     touch = StopCondition("touch", lambda s: abs(s.robot.wrench.force.z) > 5.0)
-    result = adapter.execute("robot", "moveCartesian", {"goal": goal, "speed": 0.05}, [touch], 5)
+    result = adapter.execute(
+        [Command("robot", "moveCartesian", {"goal": goal, "speed": 0.05}, [touch], 5)]
+    )[0]
     assert result.outcome == "touch"
     snap = adapter.snapshot()
     gap = snap.robot.tcp.translation[2] - FINGERTIP_BELOW_TCP - BLOCK_TOP

@@ -12,7 +12,7 @@ import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.cli import main
-from lightrocks.runtime.contract import StopCondition, Vector3
+from lightrocks.runtime.contract import Command, StopCondition, Vector3
 
 
 class Robot:
@@ -45,12 +45,15 @@ def _adapter(**options: object) -> DryRunAdapter:
 REACHED = StopCondition("reached", lambda s: s.robot.goalReached)
 
 
+def move(adapter: DryRunAdapter, args: dict, stop: list[StopCondition]) -> str:
+    """The outcome of one ``robot.moveCartesian`` with a budget of 1 s."""
+    return adapter.execute([Command("robot", "moveCartesian", args, stop, 1.0)])[0].outcome
+
+
 def test_a_move_reports_how_far_it_went_and_the_next_one_starts_from_zero() -> None:
     adapter = _adapter()
     goal = pin.SE3(pin.utils.rotate("z", 0.5), pin.utils.zero(3) + 0.01)
-    assert adapter.execute("robot", "moveCartesian", {"goal": goal}, [REACHED], 1.0).outcome == (
-        "reached"
-    )
+    assert move(adapter, {"goal": goal}, [REACHED]) == "reached"
     done = adapter.snapshot().robot
     assert done.travel.array() == pytest.approx([0.01, 0.01, 0.01])
     assert done.turned == pytest.approx(0.5)
@@ -60,7 +63,7 @@ def test_a_move_reports_how_far_it_went_and_the_next_one_starts_from_zero() -> N
         seen.append((s.robot.travel, s.robot.turned, s.robot.goalReached))
         return True
 
-    adapter.execute("robot", "moveCartesian", {"goal": goal}, [StopCondition("x", first_tick)], 1)
+    move(adapter, {"goal": goal}, [StopCondition("x", first_tick)])
     assert seen[0] == (Vector3(), 0.0, False)
 
 
@@ -68,11 +71,9 @@ def test_a_scripted_outcome_waits_for_the_call_it_ends() -> None:
     adapter = _adapter(outcomes={"robot.moveCartesian": ["blocked"]})
     goal = {"goal": pin.SE3.Identity()}
     preempted = StopCondition("preempted", lambda s: True)
-    assert adapter.execute("robot", "moveCartesian", goal, [preempted], 1.0).outcome == (
-        "preempted"
-    )
-    assert adapter.execute("robot", "moveCartesian", goal, [REACHED], 1.0).outcome == "blocked"
-    assert adapter.execute("robot", "moveCartesian", goal, [REACHED], 1.0).outcome == "reached"
+    assert move(adapter, goal, [preempted]) == "preempted"
+    assert move(adapter, goal, [REACHED]) == "blocked"
+    assert move(adapter, goal, [REACHED]) == "reached"
 
 
 # -- run --script FILE ---------------------------------------------------------------------
@@ -222,8 +223,8 @@ def test_a_call_that_ends_as_scripted_by_itself_uses_the_script_up() -> None:
     adapter = _adapter(outcomes={"robot.moveCartesian": ["clicked", "blocked"]})
     goal = {"goal": pin.SE3.Identity()}
     clicked = StopCondition("clicked", lambda s: True)
-    assert adapter.execute("robot", "moveCartesian", goal, [clicked], 1.0).outcome == "clicked"
-    assert adapter.execute("robot", "moveCartesian", goal, [REACHED], 1.0).outcome == "blocked"
+    assert move(adapter, goal, [clicked]) == "clicked"
+    assert move(adapter, goal, [REACHED]) == "blocked"
 
 
 def test_the_rail_example_script_assembles(capsys: pytest.CaptureFixture[str]) -> None:

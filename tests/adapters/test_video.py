@@ -9,6 +9,7 @@ import pytest
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
 from lightrocks.adapters.video import FPS, HEIGHT, WIDTH
+from lightrocks.runtime.contract import Command
 
 
 def read_png(data: bytes) -> np.ndarray:
@@ -36,7 +37,7 @@ def test_video_writes_png_frames_of_the_scene(kind, tmp_path):
         adapter = kind(video=str(folder))
     except RuntimeError as exc:
         pytest.skip(f"no headless OpenGL backend on this machine: {exc}")
-    adapter.execute("gripper", "close", {}, [], 0.2)
+    adapter.execute([Command("gripper", "close", {}, [], 0.2)])
     adapter.close()
     frames = sorted(folder.glob("frame_*.png"))
     assert len(frames) == round((0.3 + 0.2) * FPS) + 1

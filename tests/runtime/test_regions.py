@@ -9,6 +9,7 @@ import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.loading import component_class, generated_package
+from lightrocks.runtime import AdapterError
 from lightrocks.workbench import report
 from lightrocks.workbench.check import check
 
@@ -248,21 +249,20 @@ def test_commands_of_two_regions_run_together_on_their_devices(build) -> None:
 
 
 def test_an_adapter_that_runs_one_command_at_a_time_ends_the_regions_in_error(build) -> None:
-    class OneAtATime:
-        def __init__(self) -> None:
-            self.inner = DryRunAdapter()
-
-        def __getattr__(self, name: str):
-            if name == "execute_all":
-                raise AttributeError(name)
-            return getattr(self.inner, name)
+    class OneAtATime(DryRunAdapter):
+        def execute(self, commands, on_tick=None):
+            if len(commands) > 1:
+                raise AdapterError("one command at a time")
+            return super().execute(commands, on_tick)
 
     adapter = OneAtATime()
-    adapter.emulate = adapter.inner.emulate
     chart = build("Both")().start(adapter)
     assert chart.outcome == "failed"
     errors = [r for r in chart.trace if r["kind"] == "error"]
-    assert errors[0]["message"] == "the adapter cannot run commands of several regions at once"
+    assert errors[0]["message"] == (
+        "adapter fault in arm.move, eye.look: AdapterError('one command at a time')"
+    )
+    assert adapter.calls == []
 
 
 def test_a_time_event_of_one_region_stops_the_command_of_another_which_starts_again(

@@ -12,7 +12,13 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from lightrocks.adapters.mujoco import MujocoAdapter
-from lightrocks.runtime.contract import Command, CommandResult, Snapshot, StopCondition
+from lightrocks.runtime.contract import (
+    Command,
+    CommandResult,
+    Snapshot,
+    StopCondition,
+    TickListener,
+)
 
 FORCE_LIMIT = 80.0
 """Contact force [N] beyond which a command is stopped."""
@@ -24,7 +30,9 @@ def overloaded(snapshot: Snapshot) -> bool:
 
 
 class GuardedMujocoAdapter(MujocoAdapter):
-    def execute_all(self, commands: Sequence[Command]) -> list[CommandResult]:
+    def execute(
+        self, commands: Sequence[Command], on_tick: TickListener | None = None
+    ) -> list[CommandResult]:
         guard = StopCondition(OVERLOAD, overloaded)
         guarded = [replace(c, stop=[guard, *c.stop]) for c in commands]
-        return super().execute_all(guarded)
+        return super().execute(guarded, on_tick)
