@@ -47,11 +47,11 @@ def format_measurement(key: str, value: float | bool | str) -> str:
     return f"{value:g}"
 
 
-def show(name: str, run: Callable[..., RunResult]) -> int:
-    """Call ``run(progress=…)`` with a live status line on stderr (simulated time, active
-    state path) and print the summary on stdout; 0 when it ended with the success outcome."""
+@contextmanager
+def live_status() -> Iterator[Callable[[dict[str, Any]], None]]:
+    """A live status line on stderr (simulated time, active state path); yields the trace
+    listener that updates it."""
     from rich.console import Console
-    from rich.table import Table
 
     with Console(stderr=True, highlight=False, markup=False).status("starting") as status:
         path = ""
@@ -64,7 +64,14 @@ def show(name: str, run: Callable[..., RunResult]) -> int:
                 path = record["state"].rpartition("/")[0]
             status.update(f"{record['time']:8.3f} s  {path}")
 
-        result = run(progress=progress)
+        yield progress
+
+
+def show(name: str, result: RunResult) -> int:
+    """The summary of one run on stdout; 0 when it ended with the success outcome."""
+    from rich.console import Console
+    from rich.table import Table
+
     console = Console(highlight=False, markup=False)
     outcome = result.outcome or "not finished"
     if result.skills:
@@ -116,17 +123,12 @@ def progress_bar(name: str, runs: int) -> Iterator[Callable[[bool], None]]:
         yield advance
 
 
-def show_seeds(
-    name: str, wanted: str | None, runs: int, run: Callable[..., list[RunResult]]
-) -> int:
-    """Call ``run(done=…)`` with a progress bar on stderr; print a row per seed, the success
-    rate with its 95 % Wilson interval and the spread of the simulated time on stdout.
-    0 when every run ended with the success outcome."""
+def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
+    """A row per seed, the success rate with its 95 % Wilson interval and the spread of the
+    simulated time on stdout; 0 when every run ended with the success outcome."""
     from rich.console import Console
     from rich.table import Table
 
-    with progress_bar(name, runs) as advance:
-        results = run(done=lambda result: advance(result.success))
     keys = list(dict.fromkeys(k for r in results for k in key_measurements(r.measurements)))
     table = Table(title=f"{name}: {len(results)} runs", title_justify="left")
     table.add_column("seed", justify="right")

@@ -1,7 +1,5 @@
-"""One run of a generated statechart: bind it to an adapter, drive it, summarize it.
-
-``run_once`` takes picklable inputs only, so that a worker process can do it on its own.
-"""
+"""One run of a generated statechart: bind it to an adapter, drive it, summarize it (the
+pipeline's last stage, :func:`app.pipeline.run`)."""
 
 from __future__ import annotations
 
@@ -10,11 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from lightrocks.app.adapter_factory import adapter_for, adapter_options, scene_of
 from lightrocks.app.errors import ModelError, RunError
-from lightrocks.app.loading import load_component
-from lightrocks.app.script import Script
-from lightrocks.app.values import Noise, parameters, parse_delay
 
 
 def success_outcome(cls: type, chosen: str | None = None) -> str | None:
@@ -61,7 +55,7 @@ def drive(
     cls: type,
     params: dict[str, Any],
     adapter: Any,
-    events: Sequence[str],
+    events: Sequence[str | float],
     trace: Path | None,
     progress: Callable[[dict[str, Any]], None] | None = None,
     watch: Any = None,
@@ -77,7 +71,7 @@ def drive(
     from lightrocks.runtime.sampling import Sampler
 
     chart = cls(**params)
-    steps = [parse_delay(e) if e.startswith("+") else e for e in events]
+    steps = list(events)
     if adapter is not None and any(not isinstance(step, str) for step in steps):
         raise RunError("+<time> advances the virtual clock of a run without adapter only")
     unknown = [e for e in steps if isinstance(e, str) and e not in chart.events]
@@ -135,92 +129,3 @@ class RunResult:
     active orthogonal region)."""
     video: str = ""
     """Where the adapter's video went."""
-
-
-def run_component(
-    cls: type,
-    params: Sequence[str],
-    adapter: str | None,
-    seed: int = 0,
-    noise: Noise = (0.0, 0.0),
-    trace: Path | None = None,
-    video: str | None = None,
-    *,
-    events: Sequence[str] = (),
-    success: str | None = None,
-    progress: Callable[[dict[str, Any]], None] | None = None,
-    script: Script | None = None,
-    watch: Any = None,
-    header: Mapping[str, Any] | None = None,
-) -> RunResult:
-    """One run of a loaded chart; the measurements are read before the adapter is closed,
-    because closing ends its simulation."""
-    wanted = success_outcome(cls, success)
-    values = parameters(cls, params)
-    options = adapter_options(adapter, seed, noise, video, script)
-    device = None if adapter is None else adapter_for(adapter, scene_of(cls), **options)
-    try:
-        chart = drive(cls, values, device, events, trace, progress, watch, header)
-        measure = getattr(device, "measurements", None)
-        measured = dict(measure()) if measure is not None else {}
-        if watch is not None:
-            watch.finish(measured)
-    finally:
-        if device is not None:
-            device.close()
-    summary = summarize(chart)
-    video_written = getattr(device, "video_written", "")
-    # a plain chart without final state succeeds by resting without error
-    succeeded = summary.outcome != "error" if wanted is None else summary.outcome == wanted
-    return RunResult(
-        seed,
-        summary.outcome,
-        succeeded,
-        summary.time,
-        summary.skills,
-        measured,
-        summary.fault,
-        () if chart.finished else _innermost(chart.active_paths),
-        video_written,
-    )
-
-
-def _innermost(paths: tuple[str, ...]) -> tuple[str, ...]:
-    return tuple(p for p in paths if not any(q.startswith(p + "/") for q in paths))
-
-
-def run_once(
-    model: Path,
-    search_path: Sequence[Path],
-    params: Sequence[str],
-    adapter: str | None,
-    seed: int = 0,
-    noise: Noise = (0.0, 0.0),
-    trace: Path | None = None,
-    video: str | None = None,
-    *,
-    events: Sequence[str] = (),
-    success: str | None = None,
-    script: Script | None = None,
-) -> RunResult:
-    """One run from picklable inputs only, so that a worker process can do it on its own:
-    the generated code is imported again from the cache, never pickled."""
-    cls = load_component(model, search_path)
-    return run_component(
-        cls,
-        params,
-        adapter,
-        seed,
-        noise,
-        trace,
-        video,
-        events=events,
-        success=success,
-        script=script,
-        header=run_header(model, search_path),
-    )
-
-
-def run_header(model: Path, search_path: Sequence[Path]) -> dict[str, Any]:
-    """The first record of a trace file: the model it ran, so that a replay can draw it."""
-    return {"model": str(model.resolve()), "path": [str(p.resolve()) for p in search_path]}

@@ -8,16 +8,10 @@ import os
 import signal
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from pathlib import Path
 
-from lightrocks.app.run import RunResult, run_once
-from lightrocks.app.script import Script
-from lightrocks.app.values import Noise
-
-
-def seed_trace(trace: Path | None, seed: int) -> Path | None:
-    """``run.jsonl`` -> ``run.seed3.jsonl``: one trace per seed."""
-    return None if trace is None else trace.with_name(f"{trace.stem}.seed{seed}{trace.suffix}")
+from lightrocks.app.pipeline import run
+from lightrocks.app.run import RunResult
+from lightrocks.app.specs import RunSpec
 
 
 def _ignore_interrupt() -> None:
@@ -26,22 +20,15 @@ def _ignore_interrupt() -> None:
 
 
 def run_seeds(
-    model: Path,
-    search_path: Sequence[Path],
-    params: Sequence[str],
-    adapter: str | None,
+    spec: RunSpec,
     seeds: Sequence[int],
-    noise: Noise = (0.0, 0.0),
-    trace: Path | None = None,
     *,
-    events: Sequence[str] = (),
-    success: str | None = None,
     workers: int | None = None,
     done: Callable[[RunResult], None] | None = None,
-    script: Script | None = None,
 ) -> list[RunResult]:
-    """``run_once`` per seed in worker processes (default: one per core); results in seed
-    order, ``done`` is called in this process as each run ends.
+    """``spec`` once per seed in worker processes (default: one per core); results in seed
+    order, ``done`` is called in this process as each run ends. The workers receive the
+    parsed spec and import the generated code again from the cache; they read no user text.
 
     Workers are spawned, not forked: the parent may run a progress thread and have MuJoCo
     loaded, neither of which survives a fork reliably.
@@ -51,22 +38,7 @@ def run_seeds(
     count = min(workers or os.cpu_count() or 1, len(seeds))
     context = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(count, mp_context=context, initializer=_ignore_interrupt) as pool:
-        futures = [
-            pool.submit(
-                run_once,
-                model,
-                list(search_path),
-                list(params),
-                adapter,
-                seed,
-                noise,
-                seed_trace(trace, seed),
-                events=list(events),
-                success=success,
-                script=script,
-            )
-            for seed in seeds
-        ]
+        futures = [pool.submit(run, spec.for_seed(seed)) for seed in seeds]
         try:
             for future in as_completed(futures):
                 result = future.result()

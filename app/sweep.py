@@ -12,12 +12,13 @@ import signal
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lightrocks.app.errors import RunError
-from lightrocks.app.run import RunResult, run_once
+from lightrocks.app.pipeline import run
+from lightrocks.app.run import RunResult
 from lightrocks.app.seeds import wilson
+from lightrocks.app.specs import RunSpec
 from lightrocks.app.values import Noise
 
 
@@ -129,39 +130,23 @@ def _connect(client_type: type, scheduler: str) -> Any:
 
 def sweep(
     client: Any,
-    model: Path,
-    search_path: Sequence[Path],
-    adapter: str | None,
     points: Sequence[GridPoint],
+    specs: Sequence[RunSpec],
     seeds: Sequence[int],
     *,
-    params: Sequence[str] = (),
-    success: str | None = None,
     done: Callable[[GridPoint, RunResult], None] | None = None,
 ) -> list[tuple[GridPoint, RunResult]]:
-    """Run every grid point over ``seeds`` on the cluster; results in grid and seed order.
+    """Run every grid point (its parsed run ``specs``, in the same order) over ``seeds`` on
+    the cluster; results in grid and seed order.
 
-    Each run is ``run_once`` from plain inputs, deterministic per seed, so the scheduler may
-    run a task again on another worker when its worker is lost. Ctrl-C cancels what has
-    not finished.
+    Each run is a pickled spec, deterministic per seed, so the scheduler may run a task
+    again on another worker when its worker is lost. Ctrl-C cancels what has not finished.
     """
     from distributed import as_completed
 
     jobs = [(point, seed) for point in points for seed in seeds]
-    futures = [
-        client.submit(
-            run_once,
-            model,
-            list(search_path),
-            [*params, *point.params],
-            adapter,
-            seed,
-            point.noise,
-            success=success,
-            pure=False,
-        )
-        for point, seed in jobs
-    ]
+    runs = [spec.for_seed(seed) for spec in specs for seed in seeds]
+    futures = [client.submit(run, spec, pure=False) for spec in runs]
     index = {future.key: job for future, job in zip(futures, jobs, strict=True)}
     try:
         for future in as_completed(futures):

@@ -73,15 +73,15 @@ def typed_value(name: str, text: str, declared: tuple) -> Any:
     parameter, what it expects and what was given: a quantity needs its unit, numbers must
     be finite, an ``Integer`` whole, a vector complete."""
     kind, _, dimensions = declared
-    wrong = RunError(
-        f"--param {name}={text}: {name} expects {_expected(declared)}, not {_describe(text)}"
-    )
     if kind == "other":
         raise RunError(f"--param {name}: a {declared[1]} cannot be given on the command line")
     try:
         value = _literal(text)
     except RunError as error:
         raise RunError(f"--param {name}: {name} expects {_expected(declared)}; {error}") from None
+    wrong = RunError(
+        f"--param {name}={text}: {name} expects {_expected(declared)}, not {_describe(text, value)}"
+    )
     if kind == "boolean":
         if not isinstance(value, ast.BooleanLiteral):
             raise wrong
@@ -123,11 +123,8 @@ def _number(value: ast.Expression, dimension: Dimension, wrong: RunError) -> flo
     return float(number)
 
 
-def _describe(text: str) -> str:
-    try:
-        value = _literal(text)
-    except RunError:
-        return f"'{text}'"
+def _describe(text: str, value: ast.Expression) -> str:
+    """What ``text`` (parsed as ``value``) is, in the words of an error message."""
     literal = value.operand if isinstance(value, ast.Unary) else value
     if isinstance(literal, ast.Quantity):
         if not literal.unit:

@@ -23,8 +23,9 @@ import statistics
 import time
 from pathlib import Path
 
-from lightrocks.adapters.scenes import goal_met
+from lightrocks.adapters import scene_registry
 from lightrocks.app.errors import RunError
+from lightrocks.app.pipeline import spec_for
 from lightrocks.app.run import RunResult
 from lightrocks.app.seeds import run_seeds, wilson
 from lightrocks.app.sweep import GridPoint, PointSummary, plot_png
@@ -59,7 +60,7 @@ CASE_STUDIES = {  # name: (scene, task)
 
 def succeeded(scene: str, result: RunResult) -> bool:
     """The task says so and the scene's ground truth agrees."""
-    return result.success and goal_met(scene, result.measurements)
+    return result.success and scene_registry.scene(scene).goal_met(result.measurements)
 
 
 def label(noise: Noise) -> str:
@@ -80,7 +81,8 @@ def measure(name: str, seeds: range, noise: Noise, workers: int | None) -> Point
 
     interrupted = False
     try:
-        run_seeds(model, [], [], "mujoco", seeds, noise, workers=workers, done=report)
+        spec = spec_for(model, [], adapter="mujoco", noise=noise)
+        run_seeds(spec, seeds, workers=workers, done=report)
     except KeyboardInterrupt:
         interrupted = True
         print(f"  ended early: {len(results)} of {len(seeds)} runs finished")

@@ -18,9 +18,8 @@ import sys
 import time
 from pathlib import Path
 
-from lightrocks.app.loading import load_component
+from lightrocks.app import pipeline
 from lightrocks.app.monitor.watch import monitor_for
-from lightrocks.app.run import run_component
 
 ROOT = Path(__file__).resolve().parents[1]
 TASK = ROOT / "examples/din_rail/tasks/AssembleRail.lr"
@@ -45,7 +44,7 @@ print(f"page got {records} records in {pushes} pushes, {size / 1e6:.1f} MB", flu
 def speed(model: Path, watched: bool) -> tuple[float, float, str]:
     """Simulated seconds per wall second and per CPU second of this process (the run's and
     the server's threads together) of one run; what the page received."""
-    cls = load_component(model, [])
+    cls = pipeline.load(model, [])
     watch, client = None, None
     if watched:
         monitor, watch = monitor_for(model, [], cls.NAME)
@@ -56,7 +55,7 @@ def speed(model: Path, watched: bool) -> tuple[float, float, str]:
         )
         assert client.stdout.readline().strip() == "connected"
     start, cpu = time.perf_counter(), time.process_time()
-    result = run_component(cls, [], "mujoco", watch=watch)
+    result = pipeline.run(pipeline.spec_for(model, [], adapter="mujoco"), cls, watch=watch)
     wall, cpu = time.perf_counter() - start, time.process_time() - cpu
     received = ""
     if client is not None:

@@ -34,33 +34,26 @@ def _configure_generate(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_generate)
 def cmd_generate(args: argparse.Namespace) -> int:
-    from lightrocks.workbench.check import check
-    from lightrocks.workbench.generators import (
-        GenerationError,
-        GenerationRequest,
-        TemplateProblem,
-        load_generator,
-        run_generator,
-        write_all,
-    )
-    from lightrocks.workbench.languages import extensions
-    from lightrocks.workbench.modelpath import model_files
+    from lightrocks.app import pipeline
+    from lightrocks.app.errors import ModelError
+    from lightrocks.app.specs import generate_spec
+    from lightrocks.workbench.generators import GenerationError, TemplateProblem, write_all
 
     try:
-        generator = load_generator(args.target)
+        spec = generate_spec(
+            existing_paths(args.models),
+            existing_paths(args.path),
+            args.target,
+            dict(option(o) for o in args.option),
+            existing_paths([args.templates])[0] if args.templates else None,
+        )
     except GenerationError as error:
         raise UsageError(str(error)) from None
-    options = dict(option(o) for o in args.option)
-    templates = existing_paths([args.templates])[0] if args.templates else None
-    paths = existing_paths(args.models)
-    context = check(paths, existing_paths(args.path))
-    if context.diagnostics.has_errors:
-        print(report.text(context.diagnostics.items))
-        return EXIT_FINDINGS
-    files = [f.resolve() for p in paths for f in model_files(p, extensions())]
-    request = GenerationRequest(context, files, options, templates)
     try:
-        written = write_all(Path(args.output), run_generator(generator, request))
+        written = write_all(Path(args.output), pipeline.generate(spec))
+    except ModelError as error:
+        print(error)  # the findings, already neutralised by report.text
+        return EXIT_FINDINGS
     except TemplateProblem as error:
         raise UsageError(str(error)) from None
     except GenerationError as error:

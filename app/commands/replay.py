@@ -33,6 +33,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
     """Serve the page with a time slider over the recorded run until Ctrl-C."""
     import threading
 
+    from lightrocks.app.errors import ModelError
     from lightrocks.app.monitor.traces import TraceError, header, read_trace, task_name
     from lightrocks.app.monitor.watch import replay_for
     from lightrocks.workbench.generators import GenerationError
@@ -52,6 +53,9 @@ def cmd_replay(args: argparse.Namespace) -> int:
     search_path = existing_paths(args.path) if args.model else existing_paths(named_path)
     try:
         monitor = replay_for(model, search_path, name, records)
+    except ModelError as error:
+        print(error)  # the findings, already neutralised by report.text
+        return EXIT_FINDINGS
     except GenerationError as error:
         raise UsageError(str(error)) from None
     serve(monitor, address)

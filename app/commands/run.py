@@ -77,15 +77,12 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_run)
 def cmd_run(args: argparse.Namespace) -> int:
-    from functools import partial
-
-    from lightrocks.app import display, values
-    from lightrocks.app.adapter_factory import adapter_options
+    from lightrocks.app import display, pipeline, values
     from lightrocks.app.errors import ModelError, RunError
-    from lightrocks.app.loading import load_component
-    from lightrocks.app.run import run_component, run_header, success_outcome
+    from lightrocks.app.run import success_outcome
     from lightrocks.app.script import read_script
     from lightrocks.app.seeds import run_seeds
+    from lightrocks.app.specs import run_spec
     from lightrocks.workbench.generators import GenerationError
 
     model = statechart_file(args.model)
@@ -105,45 +102,34 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--monitor watches a single run: leave out --seeds")
     try:
         noise = values.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
-        cls = load_component(model, search_path)
+        cls = pipeline.load(model, search_path)
         wanted = success_outcome(cls, args.success)
-        values.parameters(cls, args.param)
         script = read_script(script_file, cls) if script_file else None
-        adapter_options(args.adapter, args.seed, noise, args.video, script)
-        if args.seeds is not None:
-            seeds = range(args.seed, args.seed + args.seeds)
-            many = partial(
-                run_seeds,
-                model,
-                search_path,
-                args.param,
-                args.adapter,
-                seeds,
-                noise,
-                trace,
-                events=events,
-                success=args.success,
-                workers=args.workers,
-                script=script,
-            )
-            return display.show_seeds(cls.NAME, wanted, len(seeds), many)
-        watch = watch_for(args, model, search_path, cls.NAME) if args.monitor else None
-        single = partial(
-            run_component,
+        spec = run_spec(
             cls,
+            model,
+            search_path,
             args.param,
             args.adapter,
-            args.seed,
-            noise,
-            trace,
-            args.video,
+            seed=args.seed,
+            noise=noise,
+            video=args.video,
+            script=script,
+            trace=trace,
             events=events,
             success=args.success,
-            script=script,
-            watch=watch,
-            header=run_header(model, search_path),
         )
-        return display.show(cls.NAME, single)
+        if args.seeds is not None:
+            seeds = range(args.seed, args.seed + args.seeds)
+            with display.progress_bar(cls.NAME, len(seeds)) as advance:
+                results = run_seeds(
+                    spec, seeds, workers=args.workers, done=lambda r: advance(r.success)
+                )
+            return display.show_seeds(cls.NAME, wanted, results)
+        watch = watch_for(args, model, search_path, cls.NAME) if args.monitor else None
+        with display.live_status() as progress:
+            result = pipeline.run(spec, cls, progress=progress, watch=watch)
+        return display.show(cls.NAME, result)
     except ModelError as error:
         print(error)  # the findings, already neutralised by report.text
         return EXIT_FINDINGS

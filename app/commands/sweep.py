@@ -58,11 +58,10 @@ def _configure_sweep(sub: argparse._SubParsersAction) -> None:
 
 @command(_configure_sweep)
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from lightrocks.app import display, sweep, values
-    from lightrocks.app.adapter_factory import adapter_options
+    from lightrocks.app import display, pipeline, sweep, values
     from lightrocks.app.errors import ModelError, RunError
-    from lightrocks.app.loading import load_component
     from lightrocks.app.run import success_outcome
+    from lightrocks.app.specs import run_spec
     from lightrocks.workbench.files import write_tree
     from lightrocks.workbench.generators import GenerationError
 
@@ -81,27 +80,29 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     try:
         noises = [values.parse_noise(level) for level in args.perception_noise.split(";")]
         grid = sweep.parse_grid(args.grid)
-        cls = load_component(model, search_path)
+        cls = pipeline.load(model, search_path)
         wanted = success_outcome(cls, args.success)
         points = sweep.grid_points(grid, noises)
-        for point in points:  # every value is checked before the first run starts
-            values.parameters(cls, [*args.param, *point.params])
-            adapter_options(args.adapter, args.seed, point.noise, None)
+        specs = [  # every value is parsed and checked before the first run starts
+            run_spec(
+                cls,
+                model,
+                search_path,
+                [*args.param, *point.params],
+                args.adapter,
+                seed=args.seed,
+                noise=point.noise,
+                success=args.success,
+            )
+            for point in points
+        ]
         seeds = range(args.seed, args.seed + args.seeds)
         with (
             display.progress_bar(cls.NAME, len(points) * len(seeds)) as advance,
             sweep.dask_client(args.scheduler, args.workers) as client,
         ):
             results = sweep.sweep(
-                client,
-                model,
-                search_path,
-                args.adapter,
-                points,
-                seeds,
-                params=args.param,
-                success=args.success,
-                done=lambda _, result: advance(result.success),
+                client, points, specs, seeds, done=lambda _, result: advance(result.success)
             )
         summaries = sweep.summarize(points, results)
         write_tree(output, sweep.result_files(cls.NAME, summaries, results))

@@ -15,16 +15,11 @@ from typing import Any
 from textx import TextXError, generator
 from textx.registration import GeneratorParam
 
+from lightrocks.app import pipeline
+from lightrocks.app.errors import ModelError
+from lightrocks.app.specs import generate_spec
 from lightrocks.app.textx.check import model_path
-from lightrocks.workbench import report
-from lightrocks.workbench.check import check
-from lightrocks.workbench.generators import (
-    GenerationError,
-    GenerationRequest,
-    load_generator,
-    run_generator,
-    write_all,
-)
+from lightrocks.workbench.generators import GenerationError, write_all
 
 PATH = GeneratorParam("path", "model-path folders of imported packages", mandatory=False)
 RENDER = GeneratorParam("render", "also draw each .dot file: svg or png", mandatory=False)
@@ -33,14 +28,12 @@ DEPTH = GeneratorParam("depth", "draw imported statecharts N levels deep", manda
 
 def _run(target: str, model: Any, output_path: str | None, options: dict[str, Any]) -> None:
     file = Path(model._tx_filename).resolve()
-    context = check([file], model_path(str(options.pop("path", ""))))
-    if context.diagnostics.has_errors:
-        raise TextXError(report.text(context.diagnostics.items))
-    request = GenerationRequest(context, [file], {k: str(v) for k, v in options.items()})
+    search_path = model_path(str(options.pop("path", "")))
     output = Path(output_path) if output_path else file.parent
     try:
-        write_all(output, run_generator(load_generator(target), request))
-    except GenerationError as error:
+        spec = generate_spec([file], search_path, target, {k: str(v) for k, v in options.items()})
+        write_all(output, pipeline.generate(spec))
+    except (ModelError, GenerationError) as error:
         raise TextXError(str(error)) from None
 
 

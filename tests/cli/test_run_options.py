@@ -14,7 +14,8 @@ import pytest
 from lightrocks.app.cli import main
 from lightrocks.app.display import format_measurement
 from lightrocks.app.errors import RunError
-from lightrocks.app.seeds import seed_trace, wilson
+from lightrocks.app.seeds import wilson
+from lightrocks.app.specs import seed_trace
 from lightrocks.app.values import parse_noise, parse_value
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -1,7 +1,7 @@
 """Run parameters are values of their declared type: checked before anything starts.
 
 A wrong value is a usage error (exit 2) that names the parameter, what it expects and what
-was given; the same check serves the command line, ``run_once`` and ``--seeds``.
+was given; the same check serves the command line, ``pipeline.run_model`` and ``--seeds``.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import pytest
 from lightrocks.app.cli import main
 from lightrocks.app.errors import RunError
 from lightrocks.app.loading import load_component
-from lightrocks.app.run import run_once
+from lightrocks.app.pipeline import run_model
 from lightrocks.app.values import parameters
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -80,7 +80,7 @@ def test_a_vector_parameter_needs_every_element_with_its_dimension() -> None:
 
 def test_run_once_checks_like_the_command_line() -> None:
     with pytest.raises(RunError, match="needs its unit"):
-        run_once(SCREW_TASK, [EXAMPLES], ["depth=20"], "dryrun")
+        run_model(SCREW_TASK, [EXAMPLES], ["depth=20"], "dryrun")
 
 
 @pytest.mark.parametrize("seeds", [[], ["--seeds", "2"]])
@@ -121,3 +121,47 @@ def test_a_value_is_one_literal_never_model_text(
     error = capsys.readouterr().err
     assert "depth" in error
     assert "internal error" not in error and "Traceback" not in error
+
+
+SCREWED = EXAMPLES / "screwing" / "screwed.dryrun.json"
+
+
+def test_values_are_parsed_once_whatever_the_seeds(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The command line parses each value once into a spec; the seeds' workers get the
+    parsed spec (and could not parse here: the parser is counted in this process)."""
+    from lightrocks.app import values
+
+    read: list[str] = []
+    real = values.parse_literal
+
+    def counted(text: str, shown: str):
+        read.append(text)
+        return real(text, shown)
+
+    monkeypatch.setattr(values, "parse_literal", counted)
+    arguments = ["run", str(SCREW_TASK), "--path", str(EXAMPLES), "--adapter", "dryrun"]
+    arguments += ["--script", str(SCREWED), "--param", "depth=12 mm", "--seeds", "3"]
+    assert main([*arguments, "--workers", "1"]) == 0, capsys.readouterr()
+    assert read == ["12 mm"]
+
+
+def test_a_parsed_spec_runs_without_reading_any_value(monkeypatch: pytest.MonkeyPatch) -> None:
+    """What a worker does with a pickled spec: run it, reading no user text."""
+    import pickle
+
+    from lightrocks.app import pipeline, values
+    from lightrocks.app.script import read_script
+
+    cls = load_component(SCREW_TASK, [EXAMPLES])
+    spec = pipeline.spec_for(
+        SCREW_TASK, [EXAMPLES], ["depth=12 mm"], "dryrun", script=read_script(SCREWED, cls)
+    )
+
+    def refuse(text: str, shown: str) -> None:
+        raise AssertionError(f"a run read '{text}' again")
+
+    monkeypatch.setattr(values, "parse_literal", refuse)
+    result = pipeline.run(pickle.loads(pickle.dumps(spec.for_seed(4))))
+    assert (result.seed, result.outcome, result.success) == (4, "screwed", True)

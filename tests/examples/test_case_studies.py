@@ -14,8 +14,10 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.adapters.scenes import SCREW_AXIS_XY, SCREW_START, SCREW_TARGET_DEPTH, goal_met
-from lightrocks.app.run import RunResult, run_once
+from lightrocks.adapters.scene_registry import scene
+from lightrocks.adapters.scenes.screwing import SCREW_AXIS_XY, SCREW_START, SCREW_TARGET_DEPTH
+from lightrocks.app.pipeline import run_model, spec_for
+from lightrocks.app.run import RunResult
 from lightrocks.app.seeds import run_seeds
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,11 +37,11 @@ def private_cache(tmp_path_factory, monkeypatch) -> None:
 
 
 def screwed_home(result: RunResult) -> bool:
-    return result.outcome == "screwed" and goal_met("screwing", result.measurements)
+    return result.outcome == "screwed" and scene("screwing").goal_met(result.measurements)
 
 
 def all_latched(result: RunResult) -> bool:
-    return result.outcome == "assembled" and goal_met("din_rail", result.measurements)
+    return result.outcome == "assembled" and scene("din_rail").goal_met(result.measurements)
 
 
 def tasks_in_order(result: RunResult) -> list[str]:
@@ -59,7 +61,7 @@ def test_screw_task_carries_the_screw_to_the_hole_and_drives_it_home(
     adapter: str, tmp_path: Path
 ) -> None:
     trace = tmp_path / "run.jsonl"
-    result = run_once(SCREW_TASK, [], [], adapter, trace=trace)
+    result = run_model(SCREW_TASK, [], [], adapter, trace=trace)
     assert screwed_home(result), result
     values = result.measurements
     assert values["screw_depth"] == pytest.approx(SCREW_TARGET_DEPTH, abs=0.5e-3)
@@ -81,7 +83,7 @@ def test_a_tilted_insertion_does_not_catch_and_the_task_straightens_and_tries_ag
     not catch, the tug comes up free; the task pulls out, stands the tool straight, carries and
     searches again."""
     trace = tmp_path / "run.jsonl"
-    result = run_once(SCREW_TASK, [], ["tilt=6deg"], "mujoco", trace=trace)
+    result = run_model(SCREW_TASK, [], ["tilt=6deg"], "mujoco", trace=trace)
     assert outcomes(trace, "ScrewTask/Insert") == ["loose", "caught"]
     assert outcomes(trace, "ScrewTask/Insert/Check")[0] == "free"
     assert outcomes(trace, "ScrewTask/Retry") == ["clear"]
@@ -94,7 +96,7 @@ def test_a_screw_that_does_not_catch_is_given_up_with_the_screw_in_the_hand(
     """With no retries, the tilted insertion ends the task: the hand retreats holding the
     screw, which never caught."""
     trace = tmp_path / "run.jsonl"
-    result = run_once(SCREW_TASK, [], ["tilt=6deg", "retries=0"], "mujoco", trace=trace)
+    result = run_model(SCREW_TASK, [], ["tilt=6deg", "retries=0"], "mujoco", trace=trace)
     assert result.outcome == "failed"
     assert not result.measurements["thread_caught"]
     assert outcomes(trace, "ScrewTask/Insert") == ["loose"]
@@ -103,7 +105,7 @@ def test_a_screw_that_does_not_catch_is_given_up_with_the_screw_in_the_hand(
 
 @pytest.mark.parametrize("adapter", ["mujoco", "pinocchio"])
 def test_rail_assembly_latches_all_three_terminals(adapter: str) -> None:
-    result = run_once(ASSEMBLE_RAIL, [], [], adapter)
+    result = run_model(ASSEMBLE_RAIL, [], [], adapter)
     assert all_latched(result), result
     assert tasks_in_order(result) == [f"AssembleRail/PlugTerminal{i}" for i in (1, 2, 3)]
 
@@ -111,7 +113,7 @@ def test_rail_assembly_latches_all_three_terminals(adapter: str) -> None:
 def test_a_screw_that_is_not_gripped_is_tried_again_then_given_up() -> None:
     """The fingers close 11 mm above the head: every grasp ends empty. ScrewTask retries
     `retries` = 2 times, then ends in its failure outcome without touching the screw."""
-    result = run_once(SCREW_TASK, [], ["grip=60 mm"], "mujoco")
+    result = run_model(SCREW_TASK, [], ["grip=60 mm"], "mujoco")
     assert result.outcome == "failed"
     picks = [path for path, _ in result.skills if path == "ScrewTask/PickScrew"]
     assert len(picks) == 3
@@ -127,7 +129,7 @@ def test_a_terminal_set_down_off_the_centre_line_sidesteps_onto_it(
     stands on a lip and never clicks. The touch feels the twist, the hand steps towards the
     centre line and touches again; every terminal latches."""
     trace = tmp_path / "run.jsonl"
-    result = run_once(ASSEMBLE_RAIL, [], [f"across={across}"], "mujoco", trace=trace)
+    result = run_model(ASSEMBLE_RAIL, [], [f"across={across}"], "mujoco", trace=trace)
     assert all_latched(result), result
     for n in (1, 2, 3):
         touches = outcomes(trace, f"AssembleRail/PlugTerminal{n}/PressOn/Down")
@@ -140,7 +142,7 @@ def test_a_terminal_that_meets_the_rail_while_lowered_backs_off_and_goes_on(
     """A clearance below zero is a camera that sees the rail too low: every terminal meets
     the rail while it is lowered. The hand backs off and the push starts from there."""
     trace = tmp_path / "run.jsonl"
-    result = run_once(ASSEMBLE_RAIL, [], ["clearance=-3 mm"], "mujoco", trace=trace)
+    result = run_model(ASSEMBLE_RAIL, [], ["clearance=-3 mm"], "mujoco", trace=trace)
     assert all_latched(result), result
     for n in (1, 2, 3):
         assert outcomes(trace, f"AssembleRail/PlugTerminal{n}/BringToRail/Lower") == ["collision"]
@@ -154,7 +156,7 @@ def test_a_push_that_jams_is_tried_again_then_the_terminal_is_kept_in_the_hand(
     could feel, and the push jams. The hand backs off and pushes once more, then gives up
     with the terminal in the hand, lifted clear: nothing is left half-latched."""
     trace = tmp_path / "run.jsonl"
-    result = run_once(ASSEMBLE_RAIL, [], ["across=12 mm"], "mujoco", trace=trace)
+    result = run_model(ASSEMBLE_RAIL, [], ["across=12 mm"], "mujoco", trace=trace)
     assert result.outcome == "failed"
     assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn/Push") == ["jammed", "jammed"]
     assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn") == ["jammed"]
@@ -169,7 +171,7 @@ def test_a_slow_click_is_pressed_home_instead_of_backed_off(tmp_path: Path) -> N
     drop and the push runs out of time. Backing off would pull at the latched terminal; the
     skill presses it home and the assembly goes on."""
     trace = tmp_path / "run.jsonl"
-    result = run_once(ASSEMBLE_RAIL, [], [], "mujoco", seed=5032, noise=NOISE, trace=trace)
+    result = run_model(ASSEMBLE_RAIL, [], [], "mujoco", seed=5032, noise=NOISE, trace=trace)
     assert all_latched(result), result
     assert outcomes(trace, "AssembleRail/PlugTerminal2/PressOn/Push") == ["timeout"]
     assert outcomes(trace, "AssembleRail/PlugTerminal2/PressOn/Press") == ["seated"]
@@ -202,13 +204,13 @@ def test_reordering_the_rail_tasks_changes_only_the_sequence_model(tmp_path: Pat
     ]
     assert changed == [Path("din_rail/tasks/AssembleRail.lr")]
 
-    result = run_once(sequence, [], [], "mujoco")
+    result = run_model(sequence, [], [], "mujoco")
     assert all_latched(result), result
     assert tasks_in_order(result) == [f"AssembleRail/PlugTerminal{i}" for i in (3, 1, 2)]
 
 
 def test_the_camera_looks_ahead_while_the_arm_presses_on() -> None:
-    result = run_once(ASSEMBLE_AHEAD, [], [], "mujoco")
+    result = run_model(ASSEMBLE_AHEAD, [], [], "mujoco")
     assert all_latched(result), result
     skills = [path for path, _ in result.skills]
     assert "AssembleRailAhead/PlugTerminal1/FindTerminal" in skills
@@ -223,6 +225,6 @@ def test_the_camera_looks_ahead_while_the_arm_presses_on() -> None:
 )
 def test_case_studies_succeed_under_perception_noise(model: Path, succeeded) -> None:
     """2 mm / 2 deg camera noise on a few seeds; benchmarks/bench_case_studies.py runs 20."""
-    results = run_seeds(model, [], [], "mujoco", range(4), NOISE, workers=2)
+    results = run_seeds(spec_for(model, [], adapter="mujoco", noise=NOISE), range(4), workers=2)
     assert [r.seed for r in results] == [0, 1, 2, 3]
     assert all(succeeded(r) for r in results), results

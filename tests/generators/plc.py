@@ -119,11 +119,16 @@ class Scenario:
 Event = tuple[str, ...]
 
 
+def steps(events: list[str]) -> list[str | float]:
+    """Events and ``+500ms`` clock advances as a run takes them."""
+    return [parse_delay(e) if e.startswith("+") else e for e in events]
+
+
 def python_trace(scenario: Scenario, search: list[Path]) -> list[Event]:
     cls = load_component(scenario.model, search)
     timed = any(e.startswith("+") for e in scenario.events)
     adapter = None if timed else DryRunAdapter(outcomes=scenario.commands, sensors=scenario.sensors)
-    chart = drive(cls, {}, adapter, scenario.events, None)
+    chart = drive(cls, {}, adapter, steps(scenario.events), None)
     events: list[Event] = []
     for record in chart.trace:
         if record["kind"] == "enter":

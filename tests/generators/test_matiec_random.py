@@ -16,7 +16,17 @@ from pathlib import Path
 
 import pytest
 from generation import generate
-from plc import Scenario, comparable, driver_source, gcc, iec2c, python_trace, sfc_trace, streams
+from plc import (
+    Scenario,
+    comparable,
+    driver_source,
+    gcc,
+    iec2c,
+    python_trace,
+    sfc_trace,
+    steps,
+    streams,
+)
 from statecharts.random_charts import TICK, random_chart
 from statecharts.sismic_chart import python
 from test_matiec import _unit
@@ -130,7 +140,7 @@ def steps_alike(home: Path, folder: Path, seed: int) -> tuple[str, list[list[str
     events = [v.comment.removeprefix("event ") for v in unit.program.inputs[1:]]
     for number, script in enumerate(scripts(sorted(events), seed)):
         scenario = Scenario(f"seed {seed} script {number}", model, events=script)
-        run = drive(load_component(model, [folder]), {}, None, script, None)
+        run = drive(load_component(model, [folder]), {}, None, steps(script), None)
         if tied(run.trace, owned):
             ties += 1
             continue

@@ -13,7 +13,7 @@ import pytest
 from lightrocks.app.cli import main
 from lightrocks.app.errors import RunError
 from lightrocks.app.loading import load_component
-from lightrocks.app.run import run_once
+from lightrocks.app.pipeline import run_model
 from lightrocks.app.values import parameters
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -151,8 +151,8 @@ def test_a_run_parameter_reaching_a_range_through_a_binding(folder: Path) -> Non
 
 def test_run_once_refuses_the_same_way(folder: Path) -> None:
     with pytest.raises(RunError, match=r"arm\.move\(k\[0\]\)"):
-        run_once(folder / "t" / "Move.lr", [folder], ["k=[501 N/m, 1 N/m, 1 Nm/rad]"], "dryrun")
-    result = run_once(folder / "t" / "Move.lr", [folder], ["x=10 mm"], "dryrun")
+        run_model(folder / "t" / "Move.lr", [folder], ["k=[501 N/m, 1 N/m, 1 Nm/rad]"], "dryrun")
+    result = run_model(folder / "t" / "Move.lr", [folder], ["x=10 mm"], "dryrun")
     assert result.outcome == "reached"
 
 

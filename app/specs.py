@@ -1,0 +1,117 @@
+"""The requests the front doors hand to the pipeline, parsed and checked once.
+
+A front door (the command line, a sweep, a test, the studio) reads its user's input once into
+a :class:`GenerateSpec` or a :class:`RunSpec`: values typed and unit-checked by the language's
+literal entry point, adapter options checked against the adapter's signature, events and
+clock advances told apart. Specs are plain data, so ``--seeds`` and ``sweep`` pickle them to
+worker processes, which run them without reading any user text again.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+from lightrocks.app.adapter_factory import adapter_options
+from lightrocks.app.run import success_outcome
+from lightrocks.app.script import Script
+from lightrocks.app.values import Noise, parameters, parse_delay
+from lightrocks.workbench.generators import load_generator
+
+
+@dataclass(frozen=True)
+class GenerateSpec:
+    """Generate ``target`` from the models (files or folders) found on ``search_path``."""
+
+    models: tuple[Path, ...]
+    search_path: tuple[Path, ...]
+    target: str
+    options: Mapping[str, str] = field(default_factory=dict)
+    templates: Path | None = None
+
+
+def generate_spec(
+    models: Sequence[Path],
+    search_path: Sequence[Path],
+    target: str,
+    options: Mapping[str, str] | None = None,
+    templates: Path | None = None,
+) -> GenerateSpec:
+    """A generation request; an unknown target is a ``GenerationError`` before anything is
+    checked."""
+    load_generator(target)
+    return GenerateSpec(tuple(models), tuple(search_path), target, dict(options or {}), templates)
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One run of the statechart in ``model``."""
+
+    model: Path
+    search_path: tuple[Path, ...]
+    params: Mapping[str, Any] = field(default_factory=dict)
+    """Attribute name of the generated class -> typed value in SI units."""
+    adapter: str | None = None
+    adapter_options: Mapping[str, Any] = field(default_factory=dict)
+    """Keyword arguments the adapter accepts (seed, noise, video, script), checked."""
+    seed: int = 0
+    noise: Noise = (0.0, 0.0)
+    trace: Path | None = None
+    events: tuple[str | float, ...] = ()
+    """Events to send once the chart rests, and clock advances in seconds."""
+    success: str | None = None
+
+    def for_seed(self, seed: int) -> RunSpec:
+        """The same run with another seed, tracing to ``run.seed3.jsonl`` where it traces."""
+        options = dict(self.adapter_options)
+        if "seed" in options:
+            options["seed"] = seed
+        return replace(self, seed=seed, adapter_options=options, trace=seed_trace(self.trace, seed))
+
+    @property
+    def header(self) -> dict[str, Any]:
+        """The first record of a trace file: the model it ran, so that a replay can draw it."""
+        return {
+            "model": str(self.model.resolve()),
+            "path": [str(p.resolve()) for p in self.search_path],
+        }
+
+
+def run_spec(
+    cls: type,
+    model: Path,
+    search_path: Sequence[Path],
+    params: Sequence[str] = (),
+    adapter: str | None = None,
+    *,
+    seed: int = 0,
+    noise: Noise = (0.0, 0.0),
+    video: str | None = None,
+    script: Script | None = None,
+    trace: Path | None = None,
+    events: Sequence[str] = (),
+    success: str | None = None,
+) -> RunSpec:
+    """A run of the loaded class ``cls`` of ``model`` from its user's words: ``name=value``
+    parameters, ``+500ms`` clock advances among the events; a ``RunError`` says what is
+    wrong before anything starts."""
+    success_outcome(cls, success)
+    return RunSpec(
+        model=model,
+        search_path=tuple(search_path),
+        params=parameters(cls, params),
+        adapter=adapter,
+        adapter_options=adapter_options(adapter, seed, noise, video, script),
+        seed=seed,
+        noise=noise,
+        trace=trace,
+        events=tuple(parse_delay(e) if e.startswith("+") else e for e in events),
+        success=success,
+    )
+
+
+def seed_trace(trace: Path | None, seed: int) -> Path | None:
+    """``run.jsonl`` -> ``run.seed3.jsonl``: one trace per seed."""
+    return None if trace is None else trace.with_name(f"{trace.stem}.seed{seed}{trace.suffix}")
