@@ -19,8 +19,6 @@ from lightrocks.app import cache
 from lightrocks.app.cachedir import cache_root
 from lightrocks.app.errors import ModelError, RunError
 from lightrocks.generators.python import GENERATOR
-from lightrocks.generators.python.generator import module_path
-from lightrocks.generators.python.names import identifier
 from lightrocks.metamodel import ast
 from lightrocks.workbench import report
 from lightrocks.workbench.check import CheckContext, check
@@ -71,10 +69,9 @@ def _import_all(name: str, folder: Path) -> None:
 
 
 def component_class(package: ModuleType, qualified_name: str) -> type:
-    """The generated class of a statechart, by its qualified model name."""
-    dotted = module_path(qualified_name).removesuffix(".py").replace("/", ".")
-    module = importlib.import_module(f"{package.__name__}.{dotted}")
-    return getattr(module, identifier(qualified_name.rpartition(".")[2]))
+    """The generated class of a statechart, by its qualified model name, as the generated
+    package exports it."""
+    return package.component(qualified_name)
 
 
 def load_component(model: Path, search_path: Sequence[Path]) -> type:

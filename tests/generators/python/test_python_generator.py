@@ -138,3 +138,14 @@ def test_param_values_are_literals():
     assert parse_value("3") == 3 and parse_value("true") is True
     with pytest.raises(Exception, match="not a literal"):
         parse_value("__import__('os')")
+
+
+def test_the_package_exports_every_class_by_its_model_name(package):
+    """The app asks the generated package for a class by name; it never rebuilds the
+    package's file layout."""
+    names = sorted(package.COMPONENTS)
+    assert "screwing.tasks.ScrewTask" in names and "plain.Turnstile" in names
+    for name in names:
+        assert package.component(name).NAME == name.rpartition(".")[2]
+    with pytest.raises(KeyError):
+        package.component("screwing.tasks.NoSuchTask")
