@@ -63,11 +63,10 @@ def drive(
 ) -> Any:
     """Create, bind and run the chart; send the events once it rests.
 
-    The binding is checked before the trace file is opened, so a run that cannot start
-    leaves no file behind. A cell that does not fit the adapter is the model's mistake.
+    The chart's ``start`` checks the binding before its first step; a run that cannot start
+    leaves no trace file behind. A cell that does not fit the adapter is the model's mistake.
     """
     from lightrocks.runtime import BindingError, Trace
-    from lightrocks.runtime.binding import bind
     from lightrocks.runtime.sampling import Sampler
 
     chart = cls(**params)
@@ -78,11 +77,6 @@ def drive(
     if unknown:
         known = ", ".join(sorted(chart.events)) or "none"
         raise RunError(f"unknown event '{unknown[0]}'; {cls.NAME} accepts: {known}")
-    try:
-        if adapter is not None:
-            bind(adapter, cls.CELL)
-    except BindingError as error:
-        raise ModelError(f"error: {error}") from None
     try:
         recorder = Trace(trace)
     except OSError as error:
@@ -95,6 +89,7 @@ def drive(
         watch.attach(recorder)  # first: a paused tick is sampled once the run goes on
     if adapter is not None:
         Sampler(recorder, adapter.devices()).attach()
+    misfit: BindingError | None = None
     try:
         chart.start(adapter, trace=recorder)
         for step in steps:
@@ -104,8 +99,14 @@ def drive(
                 chart.send(step)
             else:
                 chart.advance(step)
+    except BindingError as error:
+        misfit = error
     finally:
         recorder.close()
+    if misfit is not None:
+        if trace is not None:
+            trace.unlink(missing_ok=True)
+        raise ModelError(f"error: {misfit}") from None
     if recorder.failure is not None:
         trace.unlink(missing_ok=True)  # never leave a cut-off trace behind
         reason = recorder.failure.strerror or recorder.failure
