@@ -66,16 +66,15 @@ class Conditions:
         return leaving
 
     def _keys(self, source: str, transition: ast.Transition) -> list[str]:
-        """What a transition reacts to: its stimulus, or every outcome of a child when it has
-        none (a completion transition), or the delay of a time event."""
+        """What a transition reacts to: its stimulus, or every declared outcome of a child
+        when it has none (a completion transition), or the delay of a time event."""
         if transition.delay is not None:
             return [f"after@{transition.stimulus_position}"]
         info = self.region.states.get(source)
         outcomes = info.outcomes if info is not None else None
         if transition.stimulus or outcomes is None:
             return [transition.stimulus]
-        builtins = ("timeout", "error") if _is_action(info) else ("error",)
-        return list(dict.fromkeys((*outcomes, *builtins)))
+        return list(outcomes)  # a completion takes declared outcomes, never timeout or error
 
     def _transitions(self, source: str, leaving: list[ast.Transition]) -> Iterator[Finding]:
         keys = {id(t): self._keys(source, t) for t in leaving}
@@ -359,11 +358,6 @@ def start_of(expression: ast.Expression) -> ast.Position:
                 expression = inner
             case _:
                 return expression.position
-
-
-def _is_action(info: object) -> bool:
-    imported = getattr(info, "imported", None)
-    return imported is not None and imported.layer == "action"
 
 
 def _same_effect(one: ast.Transition, other: ast.Transition) -> bool:

@@ -1,0 +1,90 @@
+"""The library entry of ``lightrocks verify``: check, then model-check the outcome flow of
+every task and skill (and of plain statecharts with an end), and give each refuted property
+with the run that shows it."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.languages.lightrocks.behaviour.checker import (
+    MAX_CONFIGURATIONS,
+    Counterexample,
+    explore,
+    refute,
+)
+from lightrocks.languages.lightrocks.behaviour.flow import Flow
+from lightrocks.languages.lightrocks.behaviour.liveness import Liveness
+from lightrocks.workbench.check import check
+from lightrocks.workbench.diagnostics import Diagnostic, Severity
+
+SEVERITY = {
+    "LR0701": Severity.ERROR,
+    "LR0702": Severity.ERROR,
+    "LR0703": Severity.WARNING,
+    "LR0704": Severity.WARNING,
+}
+
+
+@dataclass
+class Verification:
+    """Every finding of ``check`` and of the model checker; a counterexample per refuted
+    property of the outcome flow."""
+
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    counterexamples: list[tuple[Diagnostic, Counterexample]] = field(default_factory=list)
+    strict: bool = False
+
+    @property
+    def failed(self) -> bool:
+        """What makes ``verify`` exit with 1: an error, or with ``strict`` any warning."""
+        worst = {Severity.ERROR, Severity.WARNING} if self.strict else {Severity.ERROR}
+        return any(d.severity in worst for d in self.diagnostics)
+
+
+def verify(
+    paths: Iterable[Path], search_path: Iterable[Path] = (), strict: bool = False
+) -> Verification:
+    """Check the models below ``paths`` (with ``search_path`` as further model-path roots);
+    when that finds no error, model-check every task, skill and plain statechart with an end."""
+    context = check(list(paths), list(search_path))
+    result = Verification(list(context.diagnostics.items), strict=strict)
+    if context.diagnostics.has_errors:
+        return result
+    a = analysis(context)
+    liveness = Liveness()
+    seen: set[tuple[str, object]] = set()
+    for component in sorted(a.models.components, key=lambda c: c.qualified_name):
+        if component.layer == "action" or not component.region.states:
+            continue
+        flow = Flow(a.typing, component, liveness)
+        exploration = explore(flow)
+        if not exploration.complete:
+            diagnostic = Diagnostic.at(
+                component.statechart.position,
+                "LR0704",
+                SEVERITY["LR0704"],
+                f"verification of '{component.name}' stopped after {MAX_CONFIGURATIONS} "
+                "configurations: its properties are not proved",
+                "bound the values its guards count with",
+            )
+            result.diagnostics.append(diagnostic)
+        for refutation in refute(flow, exploration, loops=component.layer is not None):
+            key = (refutation.code, refutation.position)
+            if key in seen:
+                continue
+            seen.add(key)
+            diagnostic = Diagnostic.at(
+                refutation.position,
+                refutation.code,
+                SEVERITY[refutation.code],
+                refutation.message,
+                refutation.hint,
+            )
+            result.diagnostics.append(diagnostic)
+            if refutation.counterexample is not None:
+                result.counterexamples.append((diagnostic, refutation.counterexample))
+    result.diagnostics.sort()
+    return result
