@@ -9,7 +9,7 @@ from lightrocks.app.commands.common import (
     UsageError,
     command,
     existing_paths,
-    path_option,
+    run_arguments,
     statechart_file,
     trace_file,
 )
@@ -18,11 +18,7 @@ from lightrocks.app.commands.monitoring import watch_for
 
 def _configure_run(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("run", help="generate Python for a statechart and run it")
-    parser.add_argument("model", help="the .lr file of the statechart to run")
-    parser.add_argument("--adapter", help="adapter name (see 'list adapters'); none for plain")
-    parser.add_argument(
-        "--param", action="append", default=[], metavar="NAME=VALUE", help="parameter value"
-    )
+    run_arguments(parser, "parameter value")
     parser.add_argument("--trace", help="write the trace (JSON lines) to this file")
     parser.add_argument(
         "--events",
@@ -48,9 +44,6 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
         help="JSON file of scripted outcomes and sensor values for the dry run",
     )
     parser.add_argument(
-        "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
-    )
-    parser.add_argument(
         "--monitor", metavar="[HOST:]PORT", help="serve a live page of the run (host 127.0.0.1)"
     )
     parser.add_argument(
@@ -72,7 +65,6 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
         metavar="Q.NAME",
         help="abort safely on entering this state (with --monitor); repeatable",
     )
-    path_option(parser)
 
 
 @command(_configure_run)

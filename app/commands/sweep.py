@@ -12,7 +12,7 @@ from lightrocks.app.commands.common import (
     UsageError,
     command,
     existing_paths,
-    path_option,
+    run_arguments,
     statechart_file,
 )
 
@@ -21,8 +21,7 @@ def _configure_sweep(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
         "sweep", help="run every combination of parameters and noise levels over seeds on Dask"
     )
-    parser.add_argument("model", help="the .lr file of the statechart to run")
-    parser.add_argument("--adapter", help="adapter name (see 'list adapters'); none for plain")
+    run_arguments(parser, "fixed parameter value")
     parser.add_argument("--seeds", type=int, required=True, metavar="N", help="runs per point")
     parser.add_argument("--seed", type=int, default=0, help="the first seed (default 0)")
     parser.add_argument(
@@ -33,16 +32,10 @@ def _configure_sweep(sub: argparse._SubParsersAction) -> None:
         help="values of a parameter to sweep (repeat for more parameters)",
     )
     parser.add_argument(
-        "--param", action="append", default=[], metavar="NAME=VALUE", help="fixed parameter value"
-    )
-    parser.add_argument(
         "--perception-noise",
         default="0mm,0deg",
         metavar="L,A[;L,A…]",
         help="noise levels to sweep, e.g. '0mm,0deg;2mm,2deg;3mm,3deg'",
-    )
-    parser.add_argument(
-        "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"
     )
     parser.add_argument(
         "--scheduler", metavar="ADDRESS", help="a running Dask scheduler (default: a local cluster)"
@@ -53,7 +46,6 @@ def _configure_sweep(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "-o", "--output", default="sweep", help="folder for the tables and the plot (sweep)"
     )
-    path_option(parser)
 
 
 @command(_configure_sweep)
