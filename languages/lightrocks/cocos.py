@@ -13,7 +13,13 @@ import networkx as nx
 
 from lightrocks.languages.domain.types import DeviceT
 from lightrocks.languages.lightrocks.analysis import Analysis, analysis
-from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, LAYERS, Component, Region
+from lightrocks.languages.lightrocks.model import (
+    BUILTIN_OUTCOMES,
+    LAYERS,
+    Component,
+    Region,
+    StateInfo,
+)
 from lightrocks.metamodel import ast
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity, did_you_mean
@@ -458,15 +464,16 @@ def outcomes_handled(context: object) -> Iterator[Finding]:
         leaving: dict[str, list[ast.Transition]] = {}
         for transition in region.transitions:
             leaving.setdefault(transition.source, []).append(transition)
+        timeouts = {n for n, ts in leaving.items() if any(t.stimulus == "timeout" for t in ts)}
         for name, info in region.states.items():
             outcomes = info.outcomes
             if outcomes is None or info.state.is_final:
                 continue
             transitions = leaving.get(name, [])
-            if any(not t.stimulus for t in transitions):
-                continue
             handled = {t.stimulus for t in transitions}
-            for outcome in outcomes:
+            if any(not t.stimulus for t in transitions):
+                outcomes = ()  # a completion transition takes every declared outcome
+            for outcome in (*outcomes, *_builtin_outcomes(info, timeouts)):
                 if outcome not in handled:
                     yield (
                         info.state.position,
@@ -474,6 +481,14 @@ def outcomes_handled(context: object) -> Iterator[Finding]:
                         f"'{region.name}' with 'error'",
                         "",
                     )
+
+
+def _builtin_outcomes(info: StateInfo, timeouts: set[str]) -> tuple[str, ...]:
+    """``timeout`` of an action child, where its region handles the timeout of another
+    action child: the region deals with timeouts, so one left out is an oversight. (An
+    unhandled ``error`` ends the parent with ``error``: that is its handling.)"""
+    action = info.imported is not None and info.imported.layer == "action"
+    return ("timeout",) if action and timeouts - {info.name} else ()
 
 
 @coco("LR0210", Severity.ERROR, "no cycle of <<import>> and <<extends>>")

@@ -21,7 +21,37 @@ def _pick(transitions: str) -> str:
     return replace(PICK, "  Reach -> picked done;\n", transitions)
 
 
+TWICE = replace(
+    PICK,
+    "  Reach -> failed blocked;\n",
+    "  Reach -> failed blocked;\n  Reach -> failed timeout;\n  Again -> picked done;\n"
+    "  Again -> failed blocked;\n",
+)
+
 BEHAVIOUR_CASES: list[Case] = [
+    Case(
+        "LR0209",
+        ok={
+            "skills/Pick.lr": replace(
+                replace(
+                    TWICE,
+                    "state Reach(x = 5 mm);",
+                    'state Reach(x = 5 mm);\n  <<import="Move">> state Again;',
+                ),
+                "  Again -> failed blocked;\n",
+                "  Again -> failed blocked;\n  Again -> failed timeout;\n",
+            ).replace("Reach -> picked done;", "Reach -> Again done;")
+        },
+        bad={
+            "skills/Pick.lr": replace(
+                TWICE,
+                "state Reach(x = 5 mm);",
+                'state Reach(x = 5 mm);\n  @@<<import="Move">> state Again;',
+            ).replace("Reach -> picked done;", "Reach -> Again done;")
+        },
+        message="outcome 'timeout' of 'Again' is not handled",
+        variant="timeout",
+    ),
     Case(
         "LR0601",
         ok={"robots/Devices.lrd": RANGED},
