@@ -136,9 +136,10 @@ class Monitor:
             **self.summary,
         }
 
-    def drain(self, timeout: float = 3.0) -> None:
+    def drain(self, timeout: float = 15.0) -> None:
         """Give open pages up to ``timeout`` seconds to receive the end of the run and its
-        summary, so a run that ends right away still shows its outcome."""
+        summary, so a run that ends right away still shows its outcome (a busy machine may take
+        seconds; a process without open pages ends at once)."""
         deadline = time.monotonic() + timeout
         while any(n < self.feed.last for n in list(self.sent.values())):
             if time.monotonic() > deadline:
