@@ -7,6 +7,7 @@ from typing import Any
 from lightrocks.languages.lightrocks.cocos import COCOS
 from lightrocks.languages.lightrocks.cocos_behaviour import BEHAVIOUR_COCOS
 from lightrocks.languages.lightrocks.cocos_safety import SAFETY_COCOS
+from lightrocks.languages.lightrocks.cocos_silent import SILENT_COCOS
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.workbench.languages import Language
@@ -28,6 +29,6 @@ LANGUAGE = Language(
     parse=parse_statechart,
     format=_format,
     declarations=_declarations,
-    cocos=COCOS + SAFETY_COCOS + BEHAVIOUR_COCOS,
+    cocos=COCOS + SAFETY_COCOS + BEHAVIOUR_COCOS + SILENT_COCOS,
     description="tasks, skills and elemental actions as UML/P statecharts",
 )

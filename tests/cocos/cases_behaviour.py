@@ -28,7 +28,45 @@ TWICE = replace(
     "  Again -> failed blocked;\n",
 )
 
+OTHER_MOVE = replace(MOVE, "package actions;", "package more;")
+
 BEHAVIOUR_CASES: list[Case] = [
+    Case(
+        "LR0112",
+        ok={
+            "more/Move.lr": OTHER_MOVE,
+            "skills/Pick.lr": replace(
+                PICK, "import actions.*;", "import actions.*;\nimport more.*;\nimport actions.Move;"
+            ),
+        },
+        bad={
+            "more/Move.lr": OTHER_MOVE,
+            "skills/Pick.lr": replace(
+                replace(PICK, "import actions.*;", "import actions.*;\nimport more.*;"),
+                '<<import="Move">> state Reach',
+                '<<@@import="Move">> state Reach',
+            ),
+        },
+        message="'Move' is ambiguous: import actions.* (",
+        hint="qualified name",
+    ),
+    Case(
+        "LR0221",
+        ok={},
+        bad={"skills/Pick.lr": replace(PICK, "<<skill>>", '<<skill, @@timeout="3 s">>')},
+        message="<<timeout>> has no effect on a skill",
+    ),
+    Case(
+        "LR0221",
+        ok={},
+        bad={
+            "actions/Move.lr": replace(
+                MOVE, "  end condition done", "  @@history H;\n  end condition done"
+            )
+        },
+        message="history 'H' in an action has no effect",
+        variant="history",
+    ),
     Case(
         "LR0209",
         ok={
