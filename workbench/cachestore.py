@@ -7,10 +7,12 @@ Several processes may share a folder: an entry is written to a temporary file an
 into place, and an entry that another process deleted is a miss, never an error.
 
 The folder's size is kept in a ledger, one line per entry written, so that a process does
-not list the folder to learn it. Only when the ledger passes the limit is the folder listed:
-the oldest entries are deleted down to three quarters of the limit, and the ledger is
-rewritten with the size found. A ledger that misses the entries of a process that wrote at
-the moment another rewrote it is therefore set right by the next eviction.
+not list the folder to learn it: a process appends the size of each entry it writes and
+sums the ledger, which other processes append to as well (a long ledger is summed into one
+line). Only when the sum passes the limit is the folder listed: the least recently used
+entries are deleted down to three quarters of the limit, and the ledger starts anew with
+the size found. A line appended at the moment another process rewrote the ledger may be
+lost; the next eviction sets the ledger right.
 """
 
 from __future__ import annotations
@@ -27,9 +29,8 @@ LIMIT_VARIABLE = "LIGHTROCKS_CACHE_BYTES"
 DEFAULT_LIMIT = 256 * 2**20
 LEDGER = "ledger"
 """The file of the sizes written, beside the folders of entries."""
-LEDGER_LINES = 1024
-"""A process reads the ledger again after writing this many entries, and a ledger longer
-than this is summed into one line when read, so that it stays short to read."""
+LEDGER_LINES = 100
+"""A ledger longer than this is summed into one line, so that it stays quick to read."""
 
 V = TypeVar("V")
 
@@ -85,8 +86,6 @@ class Folder:
     def __init__(self, folder: Path, limit: int | None = None) -> None:
         self.folder = folder
         self.limit = configured_limit() if limit is None else limit
-        self._size: int | None = None  # the folder's size as this process knows it
-        self._written = 0  # entries this process wrote
 
     def get(self, key: str) -> str | None:
         """The entry ``key``, now the most recently used; ``None`` when it is missing or
@@ -107,21 +106,18 @@ class Folder:
             data = text.encode("utf-8")
             if len(data) > self.limit:
                 return
-            if self._size is None or self._written % LEDGER_LINES == 0:
-                self._size = self._ledger_size()  # what other processes wrote counts too
+            if not (self.folder / LEDGER).exists():
+                self.evict(self.limit)  # entries written before the folder had a ledger
             _write_atomic(self.folder / key[:2] / key, data)
-            with (self.folder / LEDGER).open("a", encoding="ascii") as ledger:
-                ledger.write(f"{len(data)}\n")
-            self._written += 1
-            self._size += len(data)
-            if self._size > self.limit:
-                self._size = self.evict(self.limit * 3 // 4)
+            if self._recorded(len(data)) > self.limit:
+                self.evict(self.limit * 3 // 4)
         except (OSError, ValueError):
             return
 
-    def evict(self, goal: int) -> int:
+    def evict(self, goal: int) -> None:
         """Delete the least recently used entries until at most ``goal`` bytes remain (the
-        files of other processes' unfinished writes count, and go when old); the size left."""
+        files of other processes' unfinished writes count, and go when old), and start the
+        ledger anew with the size left."""
         entries = sorted(_entries(self.folder))
         size = sum(length for _, length, _ in entries)
         for _, length, path in entries:
@@ -134,19 +130,19 @@ class Folder:
             except OSError:
                 continue
             size -= length
-        _write_atomic(self.folder / LEDGER, f"{size}\n".encode("ascii"))
-        return size
+        _write_atomic(self.folder / LEDGER, b"%d\n" % size)
 
-    def _ledger_size(self) -> int:
-        """The size the ledger adds up to; a folder without a readable ledger is measured."""
-        try:
-            lines = (self.folder / LEDGER).read_text(encoding="ascii").split()
-        except (OSError, ValueError):
-            return self.evict(self.limit)
-        size = sum(int(line) for line in lines if line.isdigit())
+    def _recorded(self, size: int) -> int:
+        """Add ``size`` to the ledger; the sum of the ledger, with what other processes added."""
+        with (self.folder / LEDGER).open("ab+") as ledger:
+            ledger.write(b"%d\n" % size)
+            ledger.flush()
+            ledger.seek(0)
+            lines = ledger.read().split()
+        total = sum(int(line) for line in lines if line.isdigit())
         if len(lines) > LEDGER_LINES:
-            _write_atomic(self.folder / LEDGER, f"{size}\n".encode("ascii"))
-        return size
+            _write_atomic(self.folder / LEDGER, b"%d\n" % total)
+        return total
 
 
 def _entries(folder: Path) -> list[tuple[int, int, str]]:

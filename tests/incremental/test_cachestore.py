@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -86,6 +87,30 @@ def test_the_limit_is_shared_by_processes_through_the_ledger(tmp_path: Path) -> 
     second.put(keys(4)[3], ENTRY)
     second.put(keys(5)[4], ENTRY)
     assert stored_bytes(tmp_path) <= 4 * len(ENTRY)
+
+
+WRITER = """
+import sys
+from pathlib import Path
+from lightrocks.workbench.cachestore import Folder
+folder = Folder(Path(sys.argv[1]), limit=int(sys.argv[2]))
+for index in range(300):
+    key = f"{index % 256:02x}{sys.argv[3]}{index:030x}"
+    folder.put(key, key * 25)
+    folder.get(f"{(index * 7) % 256:02x}{sys.argv[3]}{(index // 2):030x}")
+"""
+
+
+def test_processes_writing_at_once_keep_whole_entries_within_the_limit(tmp_path: Path) -> None:
+    limit = 50_000
+    writers = [
+        subprocess.Popen([sys.executable, "-c", WRITER, str(tmp_path), str(limit), f"{n:08x}"])
+        for n in range(4)
+    ]
+    assert [writer.wait() for writer in writers] == [0] * 4
+    entries = [p for p in tmp_path.rglob("*") if p.is_file() and p.name != LEDGER]
+    assert all(p.read_text(encoding="utf-8") == p.name * 25 for p in entries)
+    assert limit // 2 < stored_bytes(tmp_path) <= limit * 5 // 4  # a lost ledger line or two
 
 
 def test_a_folder_without_ledger_is_measured(tmp_path: Path) -> None:
