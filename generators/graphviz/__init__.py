@@ -10,6 +10,7 @@ from pathlib import Path
 
 from lightrocks.generators.graphviz.graph import Graph, quote
 from lightrocks.generators.graphviz.rendering import FORMATS, render, renderer
+from lightrocks.generators.outputs import chart_stems, distinct
 from lightrocks.generators.selection import selected
 from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
@@ -35,15 +36,19 @@ class DotGenerator:
         environment = template_environment(TEMPLATES, request.templates)
         environment.globals["quote"] = quote
         template = environment.get_template("statechart.dot.jinja")
-        files: dict[str, str | bytes] = {}
-        for component in selected(request):
-            graph = Graph.of(component, int(depth_text))
-            text = template.render(graph=graph)
-            files[f"{component.qualified_name}.dot"] = text
-            if fmt:
-                files[f"{component.qualified_name}.{fmt}"] = render(text, fmt)
-        if not files:
+        components = selected(request)
+        if not components:
             raise GenerationError("no statechart among the selected models")
+        stems = chart_stems(components, qualified=True)
+        suffixes = ["dot", *([fmt] if fmt else [])]
+        distinct({f"{stems[c.qualified_name]}.{s}": c for c in components for s in suffixes})
+        files: dict[str, str | bytes] = {}
+        for component in components:
+            stem = stems[component.qualified_name]
+            text = template.render(graph=Graph.of(component, int(depth_text)))
+            files[f"{stem}.dot"] = text
+            if fmt:
+                files[f"{stem}.{fmt}"] = render(text, fmt)
         return files
 
 

@@ -12,8 +12,7 @@ import os
 from datetime import UTC, datetime
 
 from lightrocks.generators.plcopen.document import project
-from lightrocks.generators.selection import is_action, selected
-from lightrocks.generators.sfc_iec61131 import build_unit, interval_option
+from lightrocks.generators.sfc_iec61131 import build_unit, interval_option, unit_files
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench.generators import GenerationError, GenerationRequest
 
@@ -34,15 +33,11 @@ class PlcopenGenerator:
         typing = analysis(request.context).typing
         created = creation_time()
         files: dict[str, str] = {}
-        for top in selected(request):
-            if is_action(top):
-                continue
+        for name, top in unit_files(request, ".xml").items():
             document = project(build_unit(top, typing), interval, created)
             buffer = io.BytesIO()
             document.write(buffer, encoding="utf-8", xml_declaration=True)
-            files[f"{top.name}.xml"] = buffer.getvalue().decode("utf-8") + "\n"
-        if not files:
-            raise GenerationError("no task or skill among the selected models")
+            files[name] = buffer.getvalue().decode("utf-8") + "\n"
         return files
 
 

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import jinja2
 
+from lightrocks.generators.outputs import distinct
 from lightrocks.generators.python import expressions as code
 from lightrocks.generators.python.builder import Builder
 from lightrocks.generators.python.domain import domain_module
@@ -71,6 +72,7 @@ class PythonGenerator:
         environment.filters["literal"] = repr  # model text as a Python literal, never code
         builder = Builder(analysis(request.context).typing, partial(_render, environment))
         modules = {module_path(c.qualified_name): c for c in builder.components}
+        distinct(modules)
         exported = [
             {
                 "name": c.qualified_name,

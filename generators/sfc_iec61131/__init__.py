@@ -6,6 +6,7 @@ import itertools
 from collections import Counter
 from pathlib import Path
 
+from lightrocks.generators.outputs import chart_stems, distinct
 from lightrocks.generators.selection import is_action, selected
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.generators.sfc_iec61131.expressions import time_literal
@@ -48,6 +49,18 @@ def interval_option(request: GenerationRequest) -> str:
     return time_literal(int(interval) / 1000)
 
 
+def unit_files(request: GenerationRequest, suffix: str) -> dict[str, Component]:
+    """The selected tasks and skills by the file of their unit: ``<Name><suffix>``, or
+    ``<package.Name><suffix>`` where another one's name folds alike (generators.outputs)."""
+    tops = [top for top in selected(request) if not is_action(top)]
+    if not tops:
+        raise GenerationError("no task or skill among the selected models")
+    stems = chart_stems(tops)
+    files = {f"{stems[top.qualified_name]}{suffix}": top for top in tops}
+    distinct(files)
+    return files
+
+
 class SfcGenerator:
     name = "sfc"
     description = "IEC 61131-3 textual SFC for PLCs (option interval_ms=1: the task cycle)"
@@ -57,9 +70,7 @@ class SfcGenerator:
         interval = interval_option(request)
         typing = analysis(request.context).typing
         files: dict[str, str] = {}
-        for top in selected(request):
-            if is_action(top):
-                continue
+        for name, top in unit_files(request, ".st").items():
             unit = build_unit(top, typing)
             text = environment.get_template("unit.st.jinja").render(
                 unit=unit,
@@ -71,9 +82,7 @@ class SfcGenerator:
             if problems:
                 listing = "\n".join(f"  {p}" for p in problems)
                 raise GenerationError(f"generated SFC of {top.name} fails the check:\n{listing}")
-            files[f"{top.name}.st"] = text
-        if not files:
-            raise GenerationError("no task or skill among the selected models")
+            files[name] = text
         return files
 
 

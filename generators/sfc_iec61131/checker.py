@@ -14,7 +14,8 @@ and SFC elements of every POU, and reports each rule it finds broken:
 ``timed-qualifier`` L, D, SD, DS and SL carry a time
 ``empty-action``   no action without statements
 ``empty-body``     no FUNCTION or FUNCTION_BLOCK without statements (MatIEC loops on one)
-``string-literal`` string literals hold printable ASCII only; anything else is a ``$`` escape
+``string-literal`` string literals hold printable ASCII only; anything else is a ``$`` escape,
+                   as are comment delimiters; at most 254 characters (MatIEC's STRING)
 ``simultaneous``   simultaneous divergences and convergences balance (same branch counts)
 """
 
@@ -25,6 +26,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from itertools import pairwise
 
+from lightrocks.generators.sfc_iec61131.expressions import STRING_LENGTH
 from lightrocks.generators.sfc_iec61131.reserved import is_reserved
 
 TOKEN = re.compile(
@@ -228,11 +230,23 @@ def check_sfc(text: str) -> list[Problem]:
         if not pou.statements and not pou.steps and pou.kind != "PROGRAM":
             problems.append(Problem(pou.name.line, "empty-body", f"{pou.name.text} has no body"))
     for token in tokenize(text):
-        if token.text.startswith("'") and not re.fullmatch(r"'[ -~]*'", token.text):
-            problems.append(
-                Problem(token.line, "string-literal", "a string holds a character to escape")
-            )
+        if token.text.startswith("'"):
+            problems += _check_string(token)
     return sorted(problems, key=lambda p: (p.line, p.rule))
+
+
+def _check_string(token: Token) -> list[Problem]:
+    """Printable ASCII only, no comment delimiter (MatIEC's ``-p`` pass reads one inside a
+    string), and no more characters than a STRING holds (MatIEC hangs on more)."""
+    inner = token.text[1:-1]
+    if not re.fullmatch(r"[ -~]*", inner):
+        return [Problem(token.line, "string-literal", "a string holds a character to escape")]
+    if "(*" in inner or "*)" in inner:
+        return [Problem(token.line, "string-literal", "a string holds a comment delimiter")]
+    length = len(re.findall(r"\$[0-9A-Fa-f]{2}|\$.|.", inner))
+    if length > STRING_LENGTH:
+        return [Problem(token.line, "string-literal", f"a string of {length} characters")]
+    return []
 
 
 def _check_spellings(pou: Pou, declared: dict[str, Token]) -> list[Problem]:

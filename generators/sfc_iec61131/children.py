@@ -13,7 +13,7 @@ from lightrocks.generators.sfc_iec61131.expressions import (
 from lightrocks.generators.sfc_iec61131.hierarchy import Node
 from lightrocks.generators.sfc_iec61131.ir import Variable
 from lightrocks.generators.sfc_iec61131.network import Branch
-from lightrocks.languages.domain.types import DeviceT, ObjectT
+from lightrocks.languages.domain.types import DeviceT, ObjectT, Type
 from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import UnitError, lookup
@@ -36,14 +36,17 @@ class Children:
         self.block.instances[instance] = "/".join(node.path)
         signature = self.unit.typing.component_signature(info.imported)
         declared = {name: t for name, t, _ in signature.parameters}
-        bound = [
-            f"{child.parameters[a.name]} := {self.scope.compile(a.value, declared.get(a.name))}"
-            for a in info.state.arguments
-            if a.name in child.parameters
-        ]
+        prepared: list[str] = []
+        bound: list[str] = []
+        for name, value in _arguments(node).items():
+            if name in child.parameters:
+                lines, text = self._passed(step, name, value, declared.get(name), self.scope)
+                prepared += lines
+                bound.append(f"{child.parameters[name]} := {text}")
         in_outs = {v.name for v in child.in_outs}
         kept = [b for b in bound if b.split(" := ")[0] in in_outs]
-        self._body(step, "P1", [f"{instance}({', '.join(['execute := TRUE', *bound])});"])
+        started = f"{instance}({', '.join(['execute := TRUE', *bound])});"
+        self._body(step, "P1", [*prepared, started])
         self._body(step, "N", [f"{instance}({', '.join(kept)});"])
         self._body(step, "P0", [f"{instance}({', '.join(['execute := FALSE', *kept])});"])
         branches = []
@@ -59,7 +62,7 @@ class Children:
         info = node.info
         action = info.imported
         region = action.region
-        arguments = {a.name: a.value for a in info.state.arguments}
+        arguments = _arguments(node)
         substitutes: dict[str, str] = {}
         assignments: list[str] = []
         for parameter in region.parameters.values():
@@ -77,7 +80,7 @@ class Children:
             if value is not None and (parameter.name in arguments or not initial):
                 assignments += self.scope.assign(ast.Name(variable.name), value, declared)
         scope = self._scope(region, substitutes)
-        start, stop, store, device, instance = self._command(region, scope)
+        start, stop, store, device, instance = self._command(step, region, scope)
         self.stops[id(node)] = stop
         self._body(step, "P1", assignments + start)
         exits = self._statements(
@@ -103,9 +106,9 @@ class Children:
             branches.append(Branch(condition, [], settle))
         return branches
 
-    def _command(self, region: Region, scope: Scope):
-        """P1 lines that start the device command of ``do``, lines that stop it, lines that
-        store its result, the device type and the device instance."""
+    def _command(self, step: str, region: Region, scope: Scope):
+        """P1 lines that start the device command of ``do`` in ``step``, lines that stop it,
+        lines that store its result, the device type and the device instance."""
         do = next(a for a in region.actions if a.kind == "do")
         statement = do.statements[0]
         call = statement.value if isinstance(statement, ast.Assignment) else statement.expression
@@ -122,9 +125,12 @@ class Children:
         declared = {p.name: resolve(loaded, p.type) for p in command.parameters}
         order = [p.name for p in command.parameters]
         bound = [f"{flag} := TRUE"]
+        prepared: list[str] = []
         for position, argument in enumerate(call.arguments):
             name = argument.name or order[position]
-            bound.append(f"{parameters[name]} := {scope.compile(argument.value, declared[name])}")
+            lines, text = self._passed(step, name, argument.value, declared[name], scope)
+            prepared += lines
+            bound.append(f"{parameters[name]} := {text}")
         instance = scope.compile(call.function.target)
         store = []
         if isinstance(statement, ast.Assignment) and result:
@@ -133,7 +139,20 @@ class Children:
             value = convert(f"{instance}.{result}", returned, wanted, statement.position)
             store.append(f"{scope.compile(statement.target)} := {value};")
         stop = [f"{instance}({flag} := FALSE);"]
-        return [f"{instance}({', '.join(bound)});"], stop, store, device, instance
+        return [*prepared, f"{instance}({', '.join(bound)});"], stop, store, device, instance
+
+    def _passed(
+        self, step: str, name: str, value: ast.Expression, declared: Type | None, scope: Scope
+    ) -> tuple[list[str], str]:
+        """Lines that prepare an argument of a call in ``step``, and the value passed: a vector
+        literal (ST has array literals as initial values only) becomes a local array, with
+        the literal as its initial value when constant, else assigned element by element."""
+        if not isinstance(value, ast.VectorLiteral):
+            return [], scope.compile(value, declared)
+        local = Variable(self.names.claim(f"{step}_{name}"), self.unit.st_type(declared))
+        local.initial = literal(value, declared) or ""
+        self.block.locals.append(local)
+        return ([] if local.initial else scope.elements(local.name, value, declared)), local.name
 
     def _timeout(self, action: Component, device: ast.Device) -> float:
         """The ``timeout`` stereotype of the action or of the one it extends, else its
@@ -153,3 +172,10 @@ class Children:
             raise GenerationError(
                 f"{found.position}: timeout '{found.value}' is not a time"
             ) from None
+
+
+def _arguments(node: Node) -> dict[str, ast.Expression]:
+    """The arguments of the state that imports a child, by parameter name: a positional one
+    names the parameter declared at its place, as at run time."""
+    order = list(node.info.imported.region.parameters)
+    return {a.name or order[i]: a.value for i, a in enumerate(node.info.state.arguments)}

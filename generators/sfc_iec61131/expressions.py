@@ -12,7 +12,16 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
-from lightrocks.languages.domain.types import FRAME, NUMBER, DeviceT, QuantityT, Type, VectorT
+from lightrocks.languages.domain.types import (
+    FRAME,
+    NUMBER,
+    DeviceT,
+    ObjectT,
+    QuantityT,
+    StructT,
+    Type,
+    VectorT,
+)
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import Value, fold
 from lightrocks.workbench.generators import GenerationError
@@ -34,16 +43,21 @@ DINT, REAL = "DINT", "REAL"
 DECLARED = {DINT: QuantityT("Integer"), REAL: NUMBER}  # a LightRocks type of each
 
 
+STRING_LENGTH = 254  # bytes of a STRING without declared length (MatIEC)
 ESCAPES = {"$": "$$", "'": "$'", "\n": "$N", "\r": "$R", "\t": "$T", "\f": "$P"}
 
 
 def string_literal(value: str) -> str:
     """A single-byte IEC 61131-3 STRING: ``$`` escapes, ``$hh`` for any other character
-    outside printable ASCII (as UTF-8 bytes)."""
+    outside printable ASCII (as UTF-8 bytes), and for the ``(`` of ``(*`` and the ``*`` of
+    ``*)``: MatIEC's forward-reference pass (``-p``) reads those as comment delimiters even
+    inside a string."""
     parts = []
-    for character in value:
+    for character, following in zip(value, [*value[1:], ""], strict=True):
         if character in ESCAPES:
             parts.append(ESCAPES[character])
+        elif (character, following) in (("(", "*"), ("*", ")")):
+            parts.append(f"${ord(character):02X}")
         elif " " <= character <= "~":
             parts.append(character)
         else:
@@ -130,6 +144,11 @@ def _literal_of(value: Value | None, declared: Type | None, position: ast.Positi
         case bool():
             return "TRUE" if value else "FALSE"
         case str():
+            if len(value.encode("utf-8")) > STRING_LENGTH:
+                raise GenerationError(
+                    f"{position}: a string of {len(value.encode('utf-8'))} bytes: an IEC 61131-3 "
+                    f"STRING holds {STRING_LENGTH} (MatIEC's default length)"
+                )
             return string_literal(value)
         case tuple():
             element = _element(declared)
@@ -148,6 +167,14 @@ def _literal_of(value: Value | None, declared: Type | None, position: ast.Positi
 def _element(declared: Type | None) -> Type | None:
     """The declared type of a vector's elements: that of its ST array (the first one's)."""
     return declared.elements[0] if isinstance(declared, VectorT) and declared.elements else None
+
+
+def _element_of(vector: ast.Expression, index: int) -> ast.Expression:
+    """Element ``index`` of a vector expression: of a literal as written, else indexed."""
+    if isinstance(vector, ast.VectorLiteral):
+        return vector.elements[index]
+    number = ast.Quantity(index, text=str(index), position=vector.position)
+    return ast.Index(vector, number, position=vector.position)
 
 
 @dataclass
@@ -223,10 +250,26 @@ class Scope:
                 return f"FRAME_MUL({self.compile(left)}, {self.compile(right)})"
             case ast.Binary(operator=operator, left=left, right=right):
                 return self._binary(operator, left, right)
+            case ast.VectorLiteral():
+                raise GenerationError(
+                    f"{expression.position}: the SFC target writes a vector literal where it "
+                    "is assigned, passed or compared: ST has array literals as initial values only"
+                )
         raise ValueError(f"cannot compile {type(expression).__name__} to Structured Text")
 
     def _binary(self, operator: str, left: ast.Expression, right: ast.Expression) -> str:
-        """Numbers of both types meet as REAL; ``/`` always divides REALs."""
+        """Numbers of both types meet as REAL; ``/`` always divides REALs; vectors are equal
+        element by element."""
+        if operator in ("==", "!="):
+            compared = [self.infer(left), self.infer(right)]
+            vectors = [t for t in compared if isinstance(t, VectorT)]
+            if vectors:
+                return self._equal_vectors(operator, left, right, len(vectors[0].elements))
+            if any(t == FRAME or isinstance(t, StructT | ObjectT) for t in compared):
+                raise GenerationError(
+                    f"{left.position}: the SFC target compares numbers, Booleans, strings and "
+                    "vectors, not frames, structures or objects"
+                )
         kinds = {self.number(left), self.number(right)}
         numeric = operator in ARITHMETIC + COMPARISONS and None not in kinds
         want = REAL if numeric and (operator == "/" or REAL in kinds) else None
@@ -234,6 +277,16 @@ class Scope:
         if operator == "%":
             return _modulo(first, second, want == REAL)
         return f"{first} {OPERATORS.get(operator, operator)} {second}"
+
+    def _equal_vectors(
+        self, operator: str, left: ast.Expression, right: ast.Expression, size: int
+    ) -> str:
+        """``==`` and ``!=`` of two vectors: ST compares no arrays, so element by element."""
+        equal = " AND ".join(
+            f"({self._binary('==', _element_of(left, i), _element_of(right, i))})"
+            for i in range(size)
+        )
+        return equal if operator == "==" else f"NOT ({equal})"
 
     def _operand(self, expression: ast.Expression, want: str | None = None) -> str:
         text, loose = self._as(expression, want)
@@ -247,11 +300,16 @@ class Scope:
         declared = declared or self.infer(target)
         left = self.compile(target)
         if isinstance(value, ast.VectorLiteral):
-            element = _element(declared)
-            return [
-                f"{left}[{i}] := {self.compile(e, element)};" for i, e in enumerate(value.elements)
-            ]
+            return self.elements(left, value, declared)
         return [f"{left} := {self.compile(value, declared)};"]
+
+    def elements(self, target: str, vector: ast.VectorLiteral, declared: Type | None) -> list[str]:
+        """``target := vector`` element by element: ST has array literals as initial values
+        only."""
+        element = _element(declared)
+        return [
+            f"{target}[{i}] := {self.compile(e, element)};" for i, e in enumerate(vector.elements)
+        ]
 
 
 def _modulo(left: str, right: str, real_operands: bool) -> str:

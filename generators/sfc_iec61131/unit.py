@@ -9,6 +9,7 @@ and the top block. Names are claimed in a fixed order, so the unit is determinis
 
 from __future__ import annotations
 
+from lightrocks.generators.outputs import shortened
 from lightrocks.generators.selection import is_action, reachable
 from lightrocks.generators.sfc_iec61131.component import ComponentBuilder
 from lightrocks.generators.sfc_iec61131.expressions import initial_value, literal
@@ -202,7 +203,7 @@ class UnitBuilder:
             [self.object_fields[k] for k in sorted(self.object_fields)],
             program,
             names.claim("Main"),
-            self.globals.claim(f"{self.top.name}_Cell"),
+            self.globals.claim(shortened(f"{self.top.name}_Cell")),  # MatIEC: <name>.c
             self.globals.claim("Controller"),
             self.globals.claim("Cyclic"),
             {name: v.name for name, v in self.cell_members.items()},

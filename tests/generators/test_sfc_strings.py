@@ -1,5 +1,6 @@
 """String literals inside generated Structured Text are data, never structure: a parenthesis
-or a comma in a string does not group a condition or split an initial value."""
+or a comma in a string does not group a condition or split an initial value, a comment
+delimiter is escaped, and a string longer than a PLC's STRING is a finding at its place."""
 
 from __future__ import annotations
 
@@ -11,6 +12,8 @@ from lxml import etree
 
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.generators.sfc_iec61131.conditions import balanced, group, negate
+from lightrocks.generators.sfc_iec61131.expressions import string_literal
+from lightrocks.workbench.generators import GenerationError
 
 PAREN = """statechart Paren {
   parameters {
@@ -91,3 +94,38 @@ def test_a_structure_initialiser_splits_outside_its_strings(tmp_path: Path) -> N
     values = document.findall(".//p:globalVars/p:variable/p:initialValue/p:structValue/p:value", ns)
     found = {v.get("member"): v.find("p:simpleValue", ns).get("value") for v in values}
     assert found == {"label": "'it$'s, (fine'", "count": "1"}
+
+
+@pytest.mark.parametrize(
+    ("value", "text"),
+    [
+        ("a (* b *)", "'a $28* b $2A)'"),
+        ("(*)", "'$28$2A)'"),
+        ("a*b (c) *", "'a*b (c) *'"),
+    ],
+)
+def test_comment_delimiters_in_strings_are_escaped(value: str, text: str) -> None:
+    """MatIEC's forward-reference pass (``-p``, as Beremiz builds) reads ``(*`` in a string
+    as the start of a comment."""
+    assert string_literal(value) == text
+
+
+def test_a_string_longer_than_a_plc_string_is_a_finding_at_its_place(tmp_path: Path) -> None:
+    model = tmp_path / "Paren.lr"
+    model.write_text(PAREN.replace('String t = ")";', f'String t = "{"x" * 255}";'))
+    with pytest.raises(GenerationError, match=rf"^{model}:4:16: a string of 255 bytes"):
+        generate("sfc", [model], search=[tmp_path])
+    model.write_text(PAREN.replace('String t = ")";', f'String t = "{"x" * 254}";'))
+    assert generate("sfc", [model], search=[tmp_path])
+
+
+@pytest.mark.parametrize(
+    "literal", ["'(* x'", "'x *)'", "'" + "x" * 255 + "'", "'" + "$0A" * 255 + "'"]
+)
+def test_the_checker_refuses_strings_matiec_cannot_read(tmp_path: Path, literal: str) -> None:
+    model = tmp_path / "Paren.lr"
+    model.write_text(PAREN)
+    text = generate("sfc", [model], search=[tmp_path])["Paren.st"]
+    assert not check_sfc(text)
+    problems = check_sfc(text.replace("'('", literal))
+    assert "string-literal" in {p.rule for p in problems}, problems
