@@ -23,14 +23,8 @@ from lightrocks.runtime.contract import (
     Wrench,
 )
 from lightrocks.runtime.environment import Environment, SceneObject, object_name
-from lightrocks.runtime.executor import (
-    ERROR,
-    PREEMPTED,
-    Abort,
-    Executor,
-    Fault,
-    UnknownEvent,
-)
+from lightrocks.runtime.executor import Executor
+from lightrocks.runtime.faults import ERROR, PREEMPTED, Abort, Fault, UnknownEvent
 from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
 from lightrocks.runtime.safety import Bound, SafeRange
 from lightrocks.runtime.sampling import Sampler

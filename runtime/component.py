@@ -14,9 +14,11 @@ from typing import IO, Any, ClassVar, Self
 from lightrocks.runtime.binding import bind
 from lightrocks.runtime.contract import Adapter, Snapshot
 from lightrocks.runtime.environment import Environment
-from lightrocks.runtime.executor import Executor, Fault, known_events
+from lightrocks.runtime.executor import Executor
+from lightrocks.runtime.faults import Fault
 from lightrocks.runtime.states import Action, Composite, Parallel
 from lightrocks.runtime.trace import Record, Trace
+from lightrocks.runtime.tree import known_events
 
 
 class Cell:
@@ -74,7 +76,7 @@ class Component:
 
     def send(self, event: str) -> bool:
         """Dispatch one event; True when a transition took it. An event the statechart does
-        not know raises :class:`runtime.executor.UnknownEvent`."""
+        not know raises :class:`runtime.faults.UnknownEvent`."""
         return self._running.send(event)
 
     def advance(self, seconds: float) -> None:

@@ -17,87 +17,39 @@ from __future__ import annotations
 
 from collections import deque
 from contextlib import suppress
-from dataclasses import dataclass, field
 from functools import partial
 from types import SimpleNamespace
 from typing import Any
 
-from lightrocks.runtime.contract import (
-    TIMEOUT,
-    Adapter,
-    Command,
-    CommandResult,
-    Snapshot,
-    StopCondition,
+from lightrocks.runtime.commands import CommandRunner, Done, Preemption, Timer
+from lightrocks.runtime.contract import Adapter, Snapshot
+from lightrocks.runtime.environment import Environment
+from lightrocks.runtime.faults import (
+    ERROR,
+    INTERRUPTED,
+    PREEMPTED,
+    Abort,
+    DescribedFault,
+    Fault,
+    UnknownEvent,
+    describe,
 )
-from lightrocks.runtime.environment import Environment, SceneObject, object_name
-from lightrocks.runtime.safety import refusal
 from lightrocks.runtime.states import Action, Choice, Composite, Parallel, State, Transition
-from lightrocks.runtime.trace import Trace, to_json
-
-ERROR, PREEMPTED, INTERRUPTED = "error", "preempted", "interrupted"
-EVENT_STOP, TIMER_STOP = "@event", "@timer"
-
-Timer = tuple[State, Transition]  # a time event of an active state, pending
-
-
-class Abort(KeyboardInterrupt):
-    """Raised on the run's thread (by a stop condition or a trace listener) to stop the run
-    safely from outside: the arm holds, no exit action runs, the outcome is ``preempted``.
-    A kind of Ctrl-C, so that every handler lets it through as it does Ctrl-C."""
+from lightrocks.runtime.trace import Trace
+from lightrocks.runtime.tree import (
+    active_children,
+    known_events,
+    matches,
+    owners,
+    reactions,
+    states_below,
+    timed_events,
+)
 
 
-class UnknownEvent(ValueError):
-    """An event that no transition of the statechart names and no declaration lists."""
+class Executor(CommandRunner):
+    """Runs a state tree: run-to-completion steps, their faults, events and time events."""
 
-
-class _Fault(Exception):
-    """A fault already described (message and model location) on its way to ``_guarded``."""
-
-    def __init__(self, message: str, location: str) -> None:
-        super().__init__(message)
-        self.message, self.location = message, location
-
-
-def describe(exc: BaseException) -> str:
-    """What a Python error in model code, an adapter or a sensor read says about itself."""
-    return f"{type(exc).__name__} in model code: {exc}"
-
-
-@dataclass
-class Fault:
-    """Why a state ended with ``error``, and the states the error passed through."""
-
-    message: str
-    location: str
-    origin: list[str] = field(default_factory=list)
-
-
-@dataclass(frozen=True)
-class Preemption:
-    """A running action was stopped for an enclosing end condition or an event."""
-
-    action: Action
-    owner: Composite | None = None
-    outcome: str = ""
-    event: str = ""
-    timer: Timer | None = None
-
-
-Done = tuple[State, str] | Preemption | None
-
-
-@dataclass
-class _Request:
-    """An action's command with the stop conditions the executor watches for it."""
-
-    action: Action
-    command: Command
-    watch: _Watch
-    preemptions: dict[str, tuple[Composite, str, Any, str]]
-
-
-class Executor:
     def __init__(self, top: State, adapter: Adapter | None, trace: Trace, env: Environment):
         self.top = top
         self.adapter = adapter
@@ -116,10 +68,10 @@ class Executor:
         self._idle = SimpleNamespace(time=0.0)
         self._sent = ""  # the event of the running send(), and whether a transition took it
         self._handled = True
-        tree = _states(top)
-        self._reactions = {state: _reactions(state) for state in tree}
-        self._timed = {state: _timed(state) for state in tree}
-        self._depth = {state: len(_owners(state)) for state in tree}
+        tree = states_below(top)
+        self._reactions = {state: reactions(state) for state in tree}
+        self._timed = {state: timed_events(state) for state in tree}
+        self._depth = {state: len(owners(state)) for state in tree}
         self._invariants = any(state.INVARIANTS for state in tree)
         self._checks = self._invariants or adapter is not None  # adapter snapshots each step
         self._tracing = trace.enabled  # looked at again at the start of every step
@@ -145,7 +97,7 @@ class Executor:
         except KeyboardInterrupt:
             raise
         except BaseException as exc:
-            raise _Fault(f"adapter fault in {what}: {exc!r}", "") from None
+            raise DescribedFault(f"adapter fault in {what}: {exc!r}", "") from None
 
     def _write(self, kind: str, **fields: Any) -> None:
         """One trace record now; nothing at all while the trace is disabled."""
@@ -207,12 +159,12 @@ class Executor:
         while pending:
             state = pending.pop()
             found.append(state)
-            pending += reversed(_active_children(state))
+            pending += reversed(active_children(state))
         return found
 
     def _is_active(self, state: State) -> bool:
         while state.parent is not None:
-            if state not in _active_children(state.parent):
+            if state not in active_children(state.parent):
                 return False
             state = state.parent
         return state is self.top and not self.finished
@@ -271,7 +223,9 @@ class Executor:
             raise
         except BaseException as exc:  # any fault of model or adapter code
             message, location = (
-                (exc.message, exc.location) if isinstance(exc, _Fault) else (describe(exc), "")
+                (exc.message, exc.location)
+                if isinstance(exc, DescribedFault)
+                else (describe(exc), "")
             )
             active = self.active()
             if handling_error or not active:
@@ -345,7 +299,7 @@ class Executor:
             if state.FINAL:
                 return (state.parent, state.name) if state.parent is not None else (state, "")
             if isinstance(state, Action):
-                if any(isinstance(owner, Parallel) for owner in _owners(state)):
+                if any(isinstance(owner, Parallel) for owner in owners(state)):
                     self._commands.append(state)  # runs with the commands of other regions
                     return None
                 return self._execute(state, s)
@@ -429,7 +383,7 @@ class Executor:
             return self._join(parent)
         self._exit(state, s)
         for transition in parent.transitions_from(state.name):
-            if _matches(transition, outcome, state) and (
+            if matches(transition, outcome, state) and (
                 transition.guard is None or transition.guard(parent, s)
             ):
                 if outcome == ERROR:
@@ -554,177 +508,6 @@ class Executor:
             return None
         return self._react(state, transition, s)
 
-    # -- actions --------------------------------------------------------------------------
-
-    def _execute(self, action: Action, s: Snapshot) -> Done:
-        """Run the device command until an end condition, a preemption or the budget."""
-        if self.adapter is None:
-            return self._error(action, "no adapter bound to run a device command", action.LOCATION)
-        arguments = self._arguments(action, s)
-        refused = self._refused(action, arguments)
-        if refused is not None:
-            return refused
-        request = self._request(action, arguments)
-        try:
-            (result,) = self._call([request])
-        except KeyboardInterrupt:
-            raise
-        except BaseException as exc:  # any adapter fault, SystemExit too
-            return self._failed([request], exc)
-        return self._settled(request, result)
-
-    def _call(self, requests: list[_Request]) -> list[Any]:
-        """Run the commands together; the trace's tick listeners hear their control ticks."""
-        on_tick = self.trace.tick if self.trace.tick_listeners else None
-        return list(self.adapter.execute([r.command for r in requests], on_tick=on_tick))
-
-    def _run_commands(self) -> Done:
-        """Run the commands of the actions entered in regions together, one per device."""
-        actions = [action for action in self._commands if self._is_active(action)]
-        self._commands.clear()
-        if not actions:
-            return None
-        if self.adapter is None:
-            return self._error(
-                actions[0], "no adapter bound to run a device command", actions[0].LOCATION
-            )
-        s = self.snapshot()
-        given = [self._arguments(action, s) for action in actions]
-        for action, arguments in zip(actions, given, strict=True):
-            refused = self._refused(action, arguments)
-            if refused is not None:
-                return refused
-        requests = [
-            self._request(a, arguments) for a, arguments in zip(actions, given, strict=True)
-        ]
-        try:
-            results = self._call(requests)
-        except KeyboardInterrupt:
-            raise
-        except BaseException as exc:  # any adapter fault, SystemExit too
-            return self._failed(requests, exc)
-        if len(results) != len(requests):
-            self._hold()
-            message = f"adapter broke the contract: {len(results)} results of {len(requests)}"
-            return self._error(actions[0], message, actions[0].LOCATION)
-        dones: list[Done] = []
-        for request, result in zip(requests, results, strict=True):
-            if self._interrupted(result):
-                self._write("stop", state=request.action.path, outcome=result.outcome,
-                            sensors={})  # fmt: skip
-                self._commands.append(request.action)  # again after the reaction, if active
-            else:
-                dones.append(self._settled(request, result))
-        self._queue.extend(dones[1:])
-        return dones[0] if dones else None
-
-    def _interrupted(self, result: Any) -> bool:
-        """The command was stopped for an event or a time event that is really due."""
-        if not isinstance(result, CommandResult):
-            return False
-        if result.outcome == EVENT_STOP:
-            return bool(self.events)
-        return result.outcome == TIMER_STOP and self._due(self.time) is not None
-
-    @staticmethod
-    def _arguments(action: Action, s: Snapshot) -> dict[str, Any]:
-        """The command's arguments, scene objects by name."""
-        return {
-            k: object_name(v) if isinstance(v, SceneObject) else v
-            for k, v in action.arguments(s).items()
-        }
-
-    def _refused(self, action: Action, arguments: dict[str, Any]) -> Done:
-        """A value outside its safe range: no command is sent, the arm holds, ``error``."""
-        refused = refusal(action.RANGES, arguments)
-        if refused is None:
-            return None
-        self._hold()
-        return self._error(action, refused, action.LOCATION)
-
-    def _request(self, action: Action, arguments: dict[str, Any]) -> _Request:
-        """The command of ``action`` with its end conditions, the end conditions of every
-        enclosing state, queued events and the next time event as stop conditions."""
-        watch = _Watch()
-        stops = [
-            StopCondition(c.name, watch(_bound(c.holds, action), c.location or action.LOCATION))
-            for c in action.ENDS
-        ]
-        preemptions = self._preemptions(action)
-        stops += [
-            StopCondition(key, watch(holds, location))
-            for key, (_, _, holds, location) in preemptions.items()
-        ]
-        stops.append(StopCondition(EVENT_STOP, watch(self._find_queued, action.LOCATION)))
-        if self._timers:
-            deadline = min(self._timers.values())
-            stops.append(StopCondition(TIMER_STOP, lambda _: self.time >= deadline))
-        self._write("command", state=action.path, device=action.DEVICE, command=action.COMMAND,
-                    budget=action.BUDGET)  # fmt: skip
-        command = Command(action.DEVICE, action.COMMAND, arguments, stops, action.BUDGET)
-        return _Request(action, command, watch, preemptions)
-
-    def _failed(self, requests: list[_Request], exc: BaseException) -> Done:
-        """The adapter raised while running these commands: the first action's error."""
-        self._hold()
-        for request in requests:
-            if request.watch.fault is not None:  # the adapter passed a predicate's fault on
-                raise request.watch.fault from None
-        action = requests[0].action
-        where = ", ".join(f"{r.action.DEVICE}.{r.action.COMMAND}" for r in requests)
-        return self._error(action, f"adapter fault in {where}: {exc!r}", action.LOCATION)
-
-    def _settled(self, request: _Request, result: Any) -> Done:
-        """What the executor does with the result of one command."""
-        action, watch, preemptions = request.action, request.watch, request.preemptions
-        if watch.fault is not None:
-            self._hold()
-            raise watch.fault
-        names = {c.name for c in action.ENDS}
-        if not isinstance(result, CommandResult) or (
-            result.outcome not in names | set(preemptions) | {TIMEOUT, EVENT_STOP, TIMER_STOP}
-        ):
-            self._hold()
-            message = f"adapter broke the contract: {result!r} is no outcome of this command"
-            return self._error(action, message, action.LOCATION)
-        self._write("stop", state=action.path, outcome=result.outcome,
-                    sensors=self._sensors(action))  # fmt: skip
-        if result.outcome in preemptions:
-            self._hold()
-            owner, outcome, _, _ = preemptions[result.outcome]
-            return Preemption(action, owner, outcome)
-        if result.outcome == EVENT_STOP:
-            self._hold()
-            return Preemption(action, event=self.events.popleft())
-        if result.outcome == TIMER_STOP:
-            self._hold()
-            return Preemption(action, timer=self._due(self.time))
-        if result.outcome == TIMEOUT:
-            self._hold()
-        elif result.value is not None:
-            action.store(result.value)
-        return (action, result.outcome)
-
-    def _preemptions(self, action: Action) -> dict[str, tuple[Composite, str, Any, str]]:
-        """Stop predicates for the end-condition expressions of every enclosing state."""
-        found = {}
-        owner = action.parent
-        while owner is not None:
-            for condition in owner.ENDS:
-                if condition.holds is not None:
-                    key = f"{owner.path}#{condition.name}"
-                    holds = _bound(condition.holds, owner)
-                    found[key] = (owner, condition.name, holds, condition.location)
-            owner = owner.parent
-        return found
-
-    def _find_queued(self, s: Snapshot) -> bool:
-        while self.events:
-            if self._find(self.events[0], s):
-                return True
-            self._write("discarded", name=self.events.popleft())
-        return False
-
     def _preempt(self, preemption: Preemption) -> Done:
         action = preemption.action
         self._write("outcome", state=action.path, outcome=PREEMPTED)
@@ -746,15 +529,6 @@ class Executor:
         except BaseException as exc:  # holding is best effort, reported anyway
             self._record("error", state=self.top.path, message=f"hold failed: {exc!r}", location="")
 
-    def _sensors(self, action: Action) -> dict[str, Any]:
-        if not action.SENSORS:
-            return {}
-        snapshot = self.snapshot()
-        return {
-            f"{device}.{sensor}": to_json(getattr(getattr(snapshot, device), sensor))
-            for device, sensor in action.SENSORS
-        }
-
     # -- contracts ------------------------------------------------------------------------
 
     def _violated(self, state: State, s: Snapshot) -> tuple[State, str] | None:
@@ -774,115 +548,3 @@ class Executor:
             if violated is not None:
                 return violated
         return None
-
-
-def known_events(top: State) -> frozenset[str]:
-    """Every event the state tree can take: declared ones and the stimuli that are no
-    outcome of their source."""
-    found: set[str] = set(getattr(top, "EVENTS", None) or ())
-    internal = [t.stimulus for t in top.INTERNAL if t.delay is None]
-    found.update(internal)
-    if isinstance(top, Composite):
-        for transition in top.TRANSITIONS:
-            source = top.children.get(transition.source)
-            if source is None or transition.delay is not None or not transition.stimulus:
-                continue
-            if transition.stimulus not in _completions(source):
-                found.add(transition.stimulus)
-        for child in top.children.values():
-            found |= known_events(child)
-    return frozenset(found)
-
-
-def _states(top: State) -> list[State]:
-    """Every state of the tree below ``top``, ``top`` first."""
-    found, pending = [], [top]
-    while pending:
-        state = pending.pop()
-        found.append(state)
-        pending += getattr(state, "children", {}).values()
-    return found
-
-
-def _reactions(state: State) -> dict[str, tuple[tuple[State, Transition], ...]]:
-    """The transitions an event may take from ``state``, by event, each with the state its
-    guard belongs to: its internal transitions, then those leaving it (unless the event is
-    one of its completions, which only its completion fires)."""
-    found: dict[str, list[tuple[State, Transition]]] = {}
-    for transition in state.INTERNAL:
-        found.setdefault(transition.stimulus, []).append((state, transition))
-    parent = state.parent
-    if parent is not None:
-        completions = _completions(state)
-        for transition in parent.transitions_from(state.name):
-            if transition.stimulus not in completions:
-                found.setdefault(transition.stimulus, []).append((parent, transition))
-    return {event: tuple(candidates) for event, candidates in found.items()}
-
-
-def _timed(state: State) -> tuple[tuple[State, Transition], ...]:
-    """The time events armed on entering ``state``: its own, then those leaving it (the order
-    in which they fire at one deadline); each with the state its delay belongs to."""
-    parent = state.parent
-    leaving = parent.transitions_from(state.name) if parent is not None else ()
-    return tuple(
-        [(state, t) for t in state.INTERNAL if t.delay is not None]
-        + [(parent, t) for t in leaving if t.delay is not None]
-    )
-
-
-def _active_children(state: State) -> list[State]:
-    """The active children of ``state``. ``_select`` and ``_exit``, on the path of every
-    event, test the two cases in place: a list per call made dispatch 20 % slower."""
-    if isinstance(state, Parallel):
-        return state.regions()
-    if isinstance(state, Composite) and state.current is not None:
-        return [state.current]
-    return []
-
-
-def _owners(state: State) -> list[State]:
-    found = []
-    while state.parent is not None:
-        state = state.parent
-        found.append(state)
-    return found
-
-
-def _completions(state: State) -> tuple[str, ...]:
-    """Outcomes ``state`` ends with: they fire only on completion, never as external events."""
-    if isinstance(state, Action | Composite):
-        return (*state.OUTCOMES, ERROR, TIMEOUT, PREEMPTED)
-    return (ERROR,)  # a violated invariant ends even a simple state
-
-
-def _matches(transition: Transition, outcome: str, child: State) -> bool:
-    """The stimulus names the outcome, or is empty and the outcome is a declared one."""
-    stimulus = transition.stimulus
-    return stimulus == outcome or (not stimulus and outcome in child.OUTCOMES)
-
-
-def _bound(holds: Any, owner: State) -> Any:
-    return lambda s: bool(holds(owner, s))
-
-
-class _Watch:
-    """Wraps stop predicates: the first one that raises stops the command (it holds) and
-    keeps its fault, which the executor reports after the adapter returned."""
-
-    def __init__(self) -> None:
-        self.fault: _Fault | None = None
-
-    def __call__(self, holds: Any, location: str) -> Any:
-        def watched(s: Snapshot) -> bool:
-            if self.fault is not None:
-                return True
-            try:
-                return bool(holds(s))
-            except KeyboardInterrupt:
-                raise
-            except BaseException as exc:  # reported as the action's error
-                self.fault = _Fault(describe(exc), location)
-                return True
-
-        return watched
