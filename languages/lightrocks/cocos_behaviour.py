@@ -9,6 +9,7 @@ from collections.abc import Iterator
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.behaviour.conditions import Conditions, Finding
 from lightrocks.languages.lightrocks.behaviour.parameters import ParameterValues
+from lightrocks.languages.lightrocks.behaviour.plausibility import Plausibility, degree_findings
 from lightrocks.metamodel import ast
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity
@@ -28,6 +29,11 @@ def condition_findings(context: object) -> dict[str, list[Finding]]:
                 if region.loaded is component.loaded:
                     for finding in Conditions(a.typing, values, component, region).findings():
                         found[finding.code].append(finding)
+            if component.layer == "action":
+                for finding in Plausibility(a.typing, component).findings():
+                    found[finding.code].append(finding)
+            for finding in degree_findings(component.unit):
+                found[finding.code].append(finding)
     context.cache["behaviour-conditions"] = found
     return found
 
@@ -54,6 +60,17 @@ exact_measurement = _conditions(
     "LR0606", Severity.WARNING, "measured values are compared with a tolerance, not with =="
 )
 
+too_short = _conditions(
+    "LR0607", Severity.WARNING, "a time budget leaves the commanded motion the time it takes"
+)
+implausible_gain = _conditions(
+    "LR0608", Severity.WARNING, "stiffness and damping are of the device's typical magnitude"
+)
+pi_degrees = _conditions("LR0609", Severity.WARNING, "degrees are not written as multiples of π")
+impossible_sign = _conditions(
+    "LR0610", Severity.WARNING, "a force end condition can hold against the commanded motion"
+)
+
 BEHAVIOUR_COCOS = (
     never_holds,
     always_holds,
@@ -61,4 +78,8 @@ BEHAVIOUR_COCOS = (
     shadowed,
     overlapping,
     exact_measurement,
+    too_short,
+    implausible_gain,
+    pi_degrees,
+    impossible_sign,
 )

@@ -29,8 +29,75 @@ TWICE = replace(
 )
 
 OTHER_MOVE = replace(MOVE, "package actions;", "package more;")
+REACHING = replace(
+    DEVICES,
+    "  sensor Boolean done;",
+    "  command reach(Frame goal, Velocity speed = 0.1 m/s in 1 mm/s .. 0.5 m/s,\n"
+    "                Stiffness6 stiffness = [2000 N/m, 2000 N/m, 2000 N/m, 150 Nm/rad, "
+    "150 Nm/rad, 150 Nm/rad]);\n"
+    "  sensor Boolean done;\n  sensor Frame tcp;\n  sensor Wrench wrench;",
+)
+REACH = """\
+package actions;
+
+import cell.Cell;
+
+<<action, timeout="5 s">> statechart Move {
+  parameters { Length x = 10 mm; Angle turn = 90 deg; }
+  do / arm.reach(goal = transl(0 mm, 0 mm, -20 mm) * arm.tcp, speed = 10 mm/s);
+  end condition done [arm.done];
+  end condition blocked [arm.wrench.force.z > 5 N];
+}
+"""
+PLAUSIBLE = {"robots/Devices.lrd": REACHING, "actions/Move.lr": REACH}
 
 BEHAVIOUR_CASES: list[Case] = [
+    Case(
+        "LR0607",
+        ok=PLAUSIBLE,
+        bad={
+            **PLAUSIBLE,
+            "actions/Move.lr": replace(
+                REACH, '<<action, timeout="5 s">>', '<<action, @@timeout="1 s">>'
+            ),
+        },
+        message="the time budget 1 s is shorter than the motion takes: 20 mm at 10 mm/s is 2 s",
+    ),
+    Case(
+        "LR0608",
+        ok=PLAUSIBLE,
+        bad={
+            **PLAUSIBLE,
+            "actions/Move.lr": replace(
+                REACH,
+                "speed = 10 mm/s);",
+                "speed = 10 mm/s,\n    stiffness = @@[2 N/m, 2 N/m, 2 N/m, 150 Nm/rad, 150 Nm/rad, 150 Nm/rad]);",
+            ),
+        },
+        message="arm.reach(stiffness[0]) = 2 (SI) is 1000 times below its typical 2000",
+    ),
+    Case(
+        "LR0609",
+        ok=PLAUSIBLE,
+        bad={
+            **PLAUSIBLE,
+            "actions/Move.lr": replace(REACH, "Angle turn = 90 deg;", "Angle turn = @@1.5708 deg;"),
+        },
+        message="1.5708 deg is π/2 degrees: radians were meant",
+    ),
+    Case(
+        "LR0610",
+        ok=PLAUSIBLE,
+        bad={
+            **PLAUSIBLE,
+            "actions/Move.lr": replace(
+                REACH,
+                "end condition blocked [arm.wrench.force.z > 5 N];",
+                "end condition blocked [@@arm.wrench.force.z < -5 N];",
+            ),
+        },
+        message="end condition 'blocked' needs arm.wrench.force.z < 0 while the arm moves -z",
+    ),
     Case(
         "LR0112",
         ok={

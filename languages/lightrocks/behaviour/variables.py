@@ -121,9 +121,9 @@ class Hull:
 
 
 def device_hull(device: ast.Device) -> Hull:
-    """The safe ranges a device declares for its command parameters, by dimension, widened
-    to hold zero (a device at rest reads zero): the default range of a sensor that declares
-    none."""
+    """The safe ranges a device declares for its command parameters, by dimension, made
+    symmetric about zero (a sensor reads a direction as a sign): the default range of a
+    sensor that declares none."""
     hull = Hull()
     for command in device.commands:
         for parameter in command.parameters:
@@ -134,7 +134,8 @@ def device_hull(device: ast.Device) -> Hull:
             for low, high in zip(lows, highs, strict=False):
                 if low[1] is None or high[1] is None or low[1] != high[1]:
                     continue
-                hull.add(low[1], min(low[0], 0.0), max(high[0], 0.0))
+                largest = max(abs(low[0]), abs(high[0]))
+                hull.add(low[1], -largest, largest)
     return hull
 
 
