@@ -71,7 +71,8 @@ BEHAVIOUR_CASES: list[Case] = [
             "actions/Move.lr": replace(
                 REACH,
                 "speed = 10 mm/s);",
-                "speed = 10 mm/s,\n    stiffness = @@[2 N/m, 2 N/m, 2 N/m, 150 Nm/rad, 150 Nm/rad, 150 Nm/rad]);",
+                "speed = 10 mm/s,\n    stiffness = @@[2 N/m, 2 N/m, 2 N/m, "
+                "150 Nm/rad, 150 Nm/rad, 150 Nm/rad]);",
             ),
         },
         message="arm.reach(stiffness[0]) = 2 (SI) is 1000 times below its typical 2000",
