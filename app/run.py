@@ -88,7 +88,7 @@ def drive(
     if watch is not None:
         watch.attach(recorder)  # first: a paused tick is sampled once the run goes on
     if adapter is not None:
-        Sampler(recorder, adapter.devices()).attach()
+        Sampler(recorder, adapter).attach()
     misfit: BindingError | None = None
     try:
         chart.start(adapter, trace=recorder)

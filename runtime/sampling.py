@@ -6,9 +6,7 @@ every adapter gets sampled, and a plot or a monitor can draw any run's forces an
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-
-from lightrocks.runtime.contract import Snapshot
+from lightrocks.runtime.contract import Adapter, Snapshot
 from lightrocks.runtime.trace import Trace, to_json
 
 PERIOD = 0.01
@@ -19,11 +17,12 @@ SAMPLED = ("tcp", "wrench")
 
 
 class Sampler:
-    """Writes a ``sample`` record into ``trace`` at the first tick of every ``PERIOD``."""
+    """Writes a ``sample`` record into ``trace`` at the first tick of every ``PERIOD``, of
+    the devices the adapter has by then (a dry run learns them when the run binds it)."""
 
-    def __init__(self, trace: Trace, devices: Iterable[str]) -> None:
+    def __init__(self, trace: Trace, adapter: Adapter) -> None:
         self._trace = trace
-        self._devices = tuple(devices)
+        self._adapter = adapter
         self._next = 0.0
 
     def attach(self) -> None:
@@ -37,7 +36,7 @@ class Sampler:
         self._next = time + PERIOD
         fields = {
             f"{name}.{sensor}": to_json(getattr(state, sensor))
-            for name in self._devices
+            for name in self._adapter.devices()
             for sensor in SAMPLED
             if hasattr(state := getattr(snapshot, name, None), sensor)
         }

@@ -40,7 +40,7 @@ def run(watch: Watch | None = None, ask=None) -> list[dict]:
     if watch is not None:
         trace.tick_listeners.append(page)
         watch.attach(trace)
-    Sampler(trace, adapter.devices()).attach()
+    Sampler(trace, adapter).attach()
     return cls().start(adapter, trace=trace).trace
 
 

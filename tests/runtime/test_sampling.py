@@ -47,7 +47,7 @@ def sampled() -> tuple[Trace, list[dict]]:
 def test_one_command_is_sampled_at_every_period():
     adapter = dry_run()
     trace, records = sampled()
-    Sampler(trace, adapter.devices()).attach()
+    Sampler(trace, adapter).attach()
     (result,) = adapter.execute(
         [Command("robot", "move", {}, [StopCondition("done", settled)], 5.0)], trace.tick
     )
@@ -63,7 +63,7 @@ def test_a_round_of_commands_is_sampled_once_per_tick():
     ticks: list[float] = []
     trace, records = sampled()
     trace.tick_listeners.append(lambda s: ticks.append(s.time))
-    Sampler(trace, adapter.devices()).attach()
+    Sampler(trace, adapter).attach()
     commands = [
         Command("robot", "move", {}, [StopCondition("done", settled)], 5.0),
         Command("camera", "localize", {}, [StopCondition("done", settled)], 5.0),
@@ -99,3 +99,14 @@ def test_abort_from_a_tick_listener_passes_through_the_adapter():
     with pytest.raises(Abort):
         adapter.execute([Command("robot", "move", {}, [], 5.0)], abort)
     assert adapter.time == pytest.approx(0.1)
+
+
+def test_the_sampler_reads_the_devices_a_dry_run_learns_when_it_is_bound():
+    adapter = DryRunAdapter(duration=0.5, step=0.001)
+    trace, records = sampled()
+    Sampler(trace, adapter).attach()
+    adapter.emulate({"robot": Robot, "camera": Camera})
+    adapter.execute(
+        [Command("robot", "move", {}, [StopCondition("done", settled)], 5.0)], trace.tick
+    )
+    assert "robot.wrench" in next(r for r in records if r["kind"] == "sample")
