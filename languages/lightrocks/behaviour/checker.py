@@ -200,5 +200,10 @@ def _counterexample(chart: str, graph: nx.DiGraph, path: list, end: str) -> Coun
 
 
 def _position(step: Step, root) -> ast.Position:
-    """Where a step's outermost fired transition is written, else the chart."""
+    """Where the transition the step fired on its outermost level is written (it leaves
+    the outermost state that acted), else the chart."""
+    for name in step.where:
+        for transition in step.fired:
+            if transition.source == name:
+                return transition.position
     return step.fired[-1].position if step.fired else root.statechart.position

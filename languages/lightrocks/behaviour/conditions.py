@@ -282,7 +282,7 @@ class Conditions:
             )
             return
         start = self._start_values(term)
-        if start and self.judge.always(term, *start):
+        if start and self.judge.always(term, *start, *self._parameter_values(term)):
             yield Finding(
                 "LR0603",
                 start_of(condition.expression),

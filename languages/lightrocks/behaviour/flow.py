@@ -296,13 +296,15 @@ class Flow:
             return self._wrap(
                 region, name, own, frame, self._enter_region(child.region, own, store)
             )
-        if info.region is not None:
+        if info.region is not None and info.region.states:
             results = self._enter_region(info.region, frame, store)
             if history:  # any state it may have been left in: an over-approximation
                 for other, inner in info.region.states.items():
                     if not inner.state.is_final:
                         results += self._enter_state(info.region, other, frame, store, False)
             return self._wrap(region, name, None, frame, results)
+        if info.region is not None:  # a body without states: entry actions only
+            store = self._actions(info.region, "entry", frame, store)
         return [Result(("S", name, None, WAIT), "", store, ())]
 
     def _wrap(

@@ -1,0 +1,139 @@
+"""``verify``: the shipped examples verify clean; each property of the outcome flow is
+refuted on a broken copy of an example at the expected position, with its counterexample;
+regions, history, choice and time events are explored without trouble."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from lightrocks.languages.lightrocks.behaviour.script import describe, script
+from lightrocks.languages.lightrocks.behaviour.verify import verify
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+CORPUS = Path(__file__).with_name("corpus")
+
+
+def broken(case: str, tmp_path: Path) -> tuple[Path, Path, dict]:
+    """The examples with one model replaced by the corpus case's broken copy."""
+    root = tmp_path / "examples"
+    shutil.copytree(EXAMPLES, root)
+    expect = json.loads((CORPUS / case / "expect.json").read_text(encoding="utf-8"))
+    shutil.copyfile(CORPUS / case / expect["file"], root / expect["file"])
+    return root, root / expect["file"], expect
+
+
+def test_the_examples_verify_clean() -> None:
+    result = verify([EXAMPLES])
+    assert [str(d) for d in result.diagnostics] == []
+    assert not result.failed
+
+
+@pytest.mark.parametrize(
+    ("case", "message", "steps"),
+    [
+        ("41-LR0701-ScrewTask", "no run of 'ScrewTask' ends with 'screwed'", ["FindScrew/Look"]),
+        ("44-LR0702-GraspScrew", "'GraspScrew' never ends", ["Open: timeout"]),
+        ("46-LR0703-SnapOnRail", "possible endless retry in 'SnapOnRail'", ["Free: lifted"]),
+    ],
+)
+def test_a_refuted_property_has_its_position_and_path(
+    case: str, message: str, steps: list[str], tmp_path: Path
+) -> None:
+    root, file, expect = broken(case, tmp_path)
+    result = verify([file], [root])
+    mine = [(d, c) for d, c in result.counterexamples if d.code == expect["code"]]
+    assert mine, [str(d) for d in result.diagnostics]
+    diagnostic, counterexample = mine[0]
+    assert Path(diagnostic.file).resolve() == file.resolve()
+    assert (diagnostic.line, diagnostic.column) == (expect["line"], expect["column"])
+    assert message in diagnostic.message
+    shown = "\n".join(describe(counterexample))
+    assert all(step in shown for step in steps), shown
+    assert script(counterexample)["outcomes"]
+
+
+def test_an_error_in_check_stops_before_the_model_checker(tmp_path: Path) -> None:
+    root, file, _ = broken("01-LR0601-Touch", tmp_path)
+    result = verify([file], [root])
+    assert result.failed
+    assert {d.code for d in result.diagnostics} == {"LR0601"}
+    assert result.counterexamples == []
+
+
+def test_strict_fails_on_warnings(tmp_path: Path) -> None:
+    root, file, _ = broken("46-LR0703-SnapOnRail", tmp_path)
+    assert not verify([file], [root]).failed
+    assert verify([file], [root], strict=True).failed
+
+
+PLAYER = """\
+package p;
+
+statechart Player {
+  events { play; pause; resume; next; stop; quit; }
+  parameters { Integer skips = 0; }
+  initial state Stopped;
+  state Playing {
+    initial state Intro;
+    state Song {
+      internal next / { skips = skips + 1; };
+      internal after(3 s) / { skips = 0; };
+    }
+    history Back;
+    deep history Exact;
+    Intro -> Song after(500 ms);
+  }
+  state Paused;
+  choice Resume;
+  final state Off;
+  Stopped -> Playing play;
+  Playing -> Paused pause;
+  Paused -> Resume resume;
+  Resume -> Playing.Exact [skips < 3];
+  Resume -> Playing.Back;
+  Paused -> Stopped stop;
+  Playing -> Stopped stop;
+  Stopped -> Off quit;
+}
+"""
+
+CROSSING = """\
+package p;
+
+statechart Crossing {
+  parameters { Integer calls = 0; }
+  initial state Both {
+    region Traffic {
+      initial state Red;
+      state Green;
+      final state Closed;
+      Red -> Green after(1 s);
+      Green -> Red press;
+      Red -> Closed close;
+    }
+    region Walker {
+      initial state Wait {
+        internal [calls < 3] press / { calls = calls + 1; };
+      }
+      final state Gone;
+      Wait -> Gone leave;
+    }
+  }
+  final state Done;
+  Both -> Done;
+}
+"""
+
+
+@pytest.mark.parametrize("text", [PLAYER, CROSSING], ids=["history-choice-time", "regions"])
+def test_regions_history_choice_and_time_events_verify(text: str, tmp_path: Path) -> None:
+    name = text.split("statechart ")[1].split()[0]
+    (tmp_path / "p").mkdir()
+    (tmp_path / "p" / f"{name}.lr").write_text(text, encoding="utf-8")
+    result = verify([tmp_path])
+    assert [str(d) for d in result.diagnostics] == []
