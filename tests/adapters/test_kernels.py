@@ -1,10 +1,16 @@
 """The native tick functions agree with the library functions and NumPy forms they replace."""
 
+import shutil
+from importlib import import_module
+from pathlib import Path
+
 import numpy as np
 import pinocchio as pin
 import pytest
+from numba.core.dispatcher import Dispatcher
 
 from lightrocks.adapters import kernels as k
+from lightrocks.adapters.kernel_jit import KERNELS, digest
 
 
 def _rotation_vectors() -> list[np.ndarray]:
@@ -83,3 +89,30 @@ def test_cartesian_refresh_equals_the_numpy_formulas() -> None:
     assert np.allclose(state[:, :7], -k.NULLSPACE_STIFFNESS * nullspace, atol=1e-9)
     assert np.allclose(state[:, 9:16], -k.NULLSPACE_DAMPING * nullspace, atol=1e-9)
     assert not state[:, 7:9].any() and not state[:, 16:].any()
+
+
+def _dispatchers() -> list:
+    """Every compiled function of the kernel modules."""
+    folder = Path(k.__file__).parent
+    modules = [import_module(f"lightrocks.adapters.{p.stem}") for p in folder.glob("kernel_*.py")]
+    found = {id(f): f for m in modules for f in vars(m).values() if isinstance(f, Dispatcher)}
+    return list(found.values())
+
+
+def test_every_kernel_is_cached_under_the_digest_of_all_kernel_modules() -> None:
+    """A kernel compiles in what it calls and reads from other kernel modules: its cache must
+    be stale when any of them changes, not only its own file."""
+    dispatchers = _dispatchers()
+    assert len(dispatchers) >= 20
+    for dispatcher in dispatchers:
+        assert dispatcher._cache._impl.locator.get_source_stamp() == KERNELS, dispatcher
+
+
+def test_the_digest_changes_with_any_kernel_module(tmp_path: Path) -> None:
+    folder = Path(k.__file__).parent
+    for path in folder.glob("kernel*.py"):
+        shutil.copy(path, tmp_path / path.name)
+    assert digest(tmp_path) == KERNELS
+    layout = tmp_path / "kernel_layout.py"
+    layout.write_text(layout.read_text() + "\n")
+    assert digest(tmp_path) != KERNELS
