@@ -6,10 +6,10 @@ entries. The folder holds at most a number of bytes (``LIGHTROCKS_CACHE_BYTES``,
 Several processes may share a folder: an entry is written to a temporary file and renamed
 into place, and an entry that another process deleted is a miss, never an error.
 
-The folder's size is kept in a ledger, one line per entry written, so that a process does
-not list the folder to learn it: a process appends the size of each entry it writes and
-sums the ledger, which other processes append to as well (a long ledger is summed into one
-line). Only when the sum passes the limit is the folder listed: the least recently used
+A ledger beside the entries keeps the folder's size, so that no process lists the folder to
+learn it: each process appends the size of every entry it writes and sums the ledger, the
+lines of other processes included (a long ledger is summed into one line). Only when the
+sum passes the limit is the folder listed: the least recently used
 entries are deleted down to three quarters of the limit, and the ledger starts anew with
 the size found. A line appended at the moment another process rewrote the ledger may be
 lost; the next eviction sets the ledger right.
@@ -74,7 +74,8 @@ class Memory(Generic[V]):
 
 
 def configured_limit() -> int:
-    """``LIGHTROCKS_CACHE_BYTES`` when it is a number of bytes, else ``DEFAULT_LIMIT``."""
+    """``LIGHTROCKS_CACHE_BYTES`` when it is a number of bytes (0 keeps nothing on disk),
+    else ``DEFAULT_LIMIT``."""
     setting = os.environ.get(LIMIT_VARIABLE, "").strip()
     return int(setting) if setting.isdigit() else DEFAULT_LIMIT
 
