@@ -60,6 +60,7 @@ class Flow:
         self._defaults: dict[int, object] = {}
         self._outcome_names: dict[tuple[int, str], tuple[str, ...]] = {}
         self.root_frame = Frame()
+        self._by_source: dict[int, dict[str, list[ast.Transition]]] = {}
 
     # -- start ----------------------------------------------------------------------------
 
@@ -174,11 +175,11 @@ class Flow:
         found = []
         stimuli = [
             t.stimulus
-            for t in region.transitions
-            if t.source == name and t.stimulus and t.stimulus not in (*outcomes, *BUILT_IN)
+            for t in self._leaving(region, name)
+            if t.stimulus and t.stimulus not in (*outcomes, *BUILT_IN)
         ]
         for stimulus in dict.fromkeys(stimuli):
-            leaving = [t for t in region.transitions if t.source == name and t.stimulus == stimulus]
+            leaving = [t for t in self._leaving(region, name) if t.stimulus == stimulus]
             after = self._exit_node(node, region, frame, store)
             for index in evaluator.first_enabled([t.guard for t in leaving], frame, store):
                 if index is None:
@@ -204,9 +205,8 @@ class Flow:
         declared = self._declared(region, source)
         leaving = [
             t
-            for t in region.transitions
-            if t.source == source
-            and (t.stimulus == outcome or (not t.stimulus and outcome in declared))
+            for t in self._leaving(region, source)
+            if t.stimulus == outcome or (not t.stimulus and outcome in declared)
         ]
         found = []
         for index in self.evaluator(region).first_enabled([t.guard for t in leaving], frame, store):
@@ -215,6 +215,15 @@ class Flow:
             else:
                 found += self._fire(region, leaving[index], frame, store)
         return found
+
+    def _leaving(self, region: Region, source: str) -> list[ast.Transition]:
+        """The transitions leaving ``source``, in declaration order (indexed once)."""
+        if id(region) not in self._by_source:
+            index: dict[str, list[ast.Transition]] = {}
+            for transition in region.transitions:
+                index.setdefault(transition.source, []).append(transition)
+            self._by_source[id(region)] = index
+        return self._by_source[id(region)].get(source, [])
 
     def _declared(self, region: Region, source: str) -> tuple[str, ...]:
         key = (id(region), source)
@@ -255,7 +264,7 @@ class Flow:
                 if index is None:
                     found.append(Result(None, "error", store, ()))
                     continue
-                leaving = [t for t in region.transitions if t.source == starts[index].name]
+                leaving = self._leaving(region, starts[index].name)
                 for choice in evaluator.first_enabled([t.guard for t in leaving], frame, store):
                     if choice is None:
                         found.append(Result(None, "error", store, ()))

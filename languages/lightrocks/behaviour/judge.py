@@ -15,6 +15,7 @@ from lightrocks.languages.lightrocks.behaviour.variables import Variable
 from lightrocks.metamodel.units import lookup
 
 TIMEOUT_MS = 500
+_ANSWERS: dict[tuple[int, ...], tuple[z3.ModelRef | bool, list[z3.BoolRef]]] = {}
 
 
 class Judge:
@@ -22,14 +23,22 @@ class Judge:
         self.terms = terms
 
     def possible(self, *facts: z3.BoolRef) -> z3.ModelRef | bool:
-        """A model where all ``facts`` hold, False when none exists, True when unknown."""
+        """A model where all ``facts`` hold, False when none exists, True when unknown.
+
+        Answers are kept by the question: the solver's terms are shared by structure, so a
+        guard written a thousand times over the same values is solved once. The question's
+        terms are kept with the answer, so their ids are never reused."""
+        assertions = [*self.terms.ranges(), *facts]
+        key = tuple(sorted(a.get_id() for a in assertions))
+        if key in _ANSWERS:
+            return _ANSWERS[key][0]
         solver = z3.Solver()
         solver.set("timeout", TIMEOUT_MS)
-        solver.add(*self.terms.ranges(), *facts)
+        solver.add(*assertions)
         answer = solver.check()
-        if answer == z3.sat:
-            return solver.model()
-        return answer != z3.unsat
+        found = solver.model() if answer == z3.sat else answer != z3.unsat
+        _ANSWERS[key] = (found, assertions)
+        return found
 
     def never(self, *facts: z3.BoolRef) -> bool:
         """The facts can never hold together (proved)."""

@@ -64,7 +64,7 @@ class Evaluator:
         terms = [z3.BoolVal(True) if g is None else self._condition(g) for g in guards]
         paths = set().union(*(self._reads(g) for g in guards if g is not None))
         shown = self._shown(paths, frame, store)
-        key = (tuple(id(g) for g in guards), shown)
+        key = (tuple(term.get_id() for term in terms), shown)  # by structure: solved once
         if key in self._answers:
             return self._answers[key]
         known = [self.terms.read[p][1] == _constant(self.terms.read[p][1], v) for p, v in shown]
