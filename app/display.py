@@ -27,7 +27,7 @@ _SCALES = {
 
 
 def measurement_label(key: str) -> str:
-    return key.replace("_", " ")
+    return printable(key.replace("_", " "))
 
 
 def key_measurements(measured: dict[str, float | bool]) -> dict[str, float | bool]:
@@ -40,7 +40,7 @@ def format_measurement(key: str, value: float | bool | str) -> str:
     if isinstance(value, bool):
         return "yes" if value else "no"
     if not isinstance(value, int | float):
-        return str(value)
+        return printable(str(value))
     for suffix, (factor, unit, decimals) in _SCALES.items():
         if key.endswith(suffix):
             return f"{value * factor:.{decimals}f} {unit}"
@@ -62,7 +62,7 @@ def live_status() -> Iterator[Callable[[dict[str, Any]], None]]:
                 path = record["state"]
             elif record["kind"] == "exit":
                 path = record["state"].rpartition("/")[0]
-            status.update(f"{record['time']:8.3f} s  {path}")
+            status.update(f"{record['time']:8.3f} s  {printable(path)}")
 
         yield progress
 
@@ -73,13 +73,13 @@ def show(name: str, result: RunResult) -> int:
     from rich.table import Table
 
     console = Console(highlight=False, markup=False)
-    outcome = result.outcome or "not finished"
+    outcome = printable(result.outcome or "not finished")
     if result.skills:
-        table = Table(title=f"{name}: {outcome}", title_justify="left")
+        table = Table(title=f"{printable(name)}: {outcome}", title_justify="left")
         table.add_column("skill")
         table.add_column("time [s]", justify="right")
         for skill, seconds in result.skills:
-            table.add_row(skill, f"{seconds:.3f}")
+            table.add_row(printable(skill), f"{seconds:.3f}")
         console.print(table)
     if result.measurements:
         table = Table()
@@ -90,7 +90,8 @@ def show(name: str, result: RunResult) -> int:
         console.print(table)
     print(f"outcome: {outcome} after {result.time:.3f} s")
     if result.active:
-        print("active: " + " | ".join(path.replace("/", " / ") for path in result.active))
+        active = " | ".join(path.replace("/", " / ") for path in result.active)
+        print(f"active: {printable(active)}")
     if result.fault:
         print(f"error: {printable(result.fault)}")
     if result.video:
@@ -130,7 +131,7 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
     from rich.table import Table
 
     keys = list(dict.fromkeys(k for r in results for k in key_measurements(r.measurements)))
-    table = Table(title=f"{name}: {len(results)} runs", title_justify="left")
+    table = Table(title=f"{printable(name)}: {len(results)} runs", title_justify="left")
     table.add_column("seed", justify="right")
     table.add_column("outcome")
     table.add_column("time [s]", justify="right")
@@ -140,7 +141,10 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
         measured = result.measurements
         cells = [format_measurement(k, measured[k]) if k in measured else "" for k in keys]
         table.add_row(
-            str(result.seed), result.outcome or "not finished", f"{result.time:.3f}", *cells
+            str(result.seed),
+            printable(result.outcome or "not finished"),
+            f"{result.time:.3f}",
+            *cells,
         )
     Console(highlight=False, markup=False).print(table)
     for result in results:
@@ -148,7 +152,7 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
             print(f"seed {result.seed}: error: {printable(result.fault)}")
     count = sum(r.success for r in results)
     low, high = wilson(count, len(results))
-    label = wanted or "finished without error"
+    label = printable(wanted or "finished without error")
     print(
         f"success ({label}): {count}/{len(results)} = {count / len(results):.0%}, "
         f"95% Wilson interval {low:.0%}–{high:.0%}"
@@ -170,11 +174,13 @@ def show_sweep(name: str, wanted: str | None, rows: list[dict[str, Any]], output
     from rich.console import Console
     from rich.table import Table
 
-    label = wanted or "finished without error"
-    table = Table(title=f"{name}: success ({label}) per grid point", title_justify="left")
+    label = printable(wanted or "finished without error")
+    table = Table(
+        title=f"{printable(name)}: success ({label}) per grid point", title_justify="left"
+    )
     given = [column for column in rows[0] if column not in _RATE_COLUMNS]
     for column in [*given, "success", "95% Wilson"]:
-        table.add_column(column.replace("_", " "), justify="right")
+        table.add_column(printable(column.replace("_", " ")), justify="right")
     for row in rows:
         cells = [f"{row[c]:g}" if isinstance(row[c], float) else printable(row[c]) for c in given]
         rate = f"{row['successes']}/{row['runs']} = {row['success_rate']:.0%}"

@@ -17,7 +17,9 @@ _SARIF_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.I
 _GITHUB_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
 
-_UNSAFE = {"Cc", "Cf", "Zl", "Zp"}  # controls, format (bidi) and line/paragraph separators
+_UNSAFE = {"Cc", "Cf", "Cs", "Zl", "Zp"}
+"""Controls, format (bidi), lone surrogates (no terminal can show them; encoding them
+fails) and line or paragraph separators."""
 
 
 def printable(text: str) -> str:

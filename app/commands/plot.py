@@ -14,6 +14,7 @@ from lightrocks.app.commands.common import (
     command,
     existing_paths,
 )
+from lightrocks.workbench.report import printable
 
 
 def _configure_plot(sub: argparse._SubParsersAction) -> None:
@@ -38,7 +39,8 @@ def cmd_plot(args: argparse.Namespace) -> int:
     try:
         recorded = plot(trace, output)
     except TraceError as error:
-        print(f"lightrocks: error: {error}", file=sys.stderr)
+        print(f"lightrocks: error: {printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS
-    print(f"{output} written: {len(recorded.times)} samples, outcome {recorded.outcome}")
+    outcome = printable(str(recorded.outcome))
+    print(f"{printable(str(output))} written: {len(recorded.times)} samples, outcome {outcome}")
     return EXIT_OK

@@ -16,6 +16,7 @@ from lightrocks.app.commands.common import (
     statechart_file,
 )
 from lightrocks.app.commands.monitoring import monitor_address, serve
+from lightrocks.workbench.report import printable
 
 
 def _configure_replay(sub: argparse._SubParsersAction) -> None:
@@ -44,7 +45,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
         records = read_trace(trace)
         name = task_name(records)
     except TraceError as error:
-        print(f"lightrocks: error: {error}", file=sys.stderr)
+        print(f"lightrocks: error: {printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS
     named, named_path = header(records)
     if args.model is None and named is None:
@@ -59,7 +60,8 @@ def cmd_replay(args: argparse.Namespace) -> int:
     except GenerationError as error:
         raise UsageError(str(error)) from None
     serve(monitor, address)
-    print(f"replaying {trace} ({records[-1]['time']:.3f} s); Ctrl-C ends", file=sys.stderr)
+    shown = printable(str(trace))
+    print(f"replaying {shown} ({records[-1]['time']:.3f} s); Ctrl-C ends", file=sys.stderr)
     with contextlib.suppress(KeyboardInterrupt):
         threading.Event().wait()
     return EXIT_OK

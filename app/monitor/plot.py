@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from lightrocks.app.monitor.traces import read_trace
+from lightrocks.workbench.report import printable
 
 FORMATS = (".png", ".html")
 LAYERS = ("skill", "action")
@@ -67,7 +68,9 @@ def recording(records: list[dict[str, Any]]) -> Recording:
 
 
 def figure(rec: Recording, title: str) -> Any:
-    """The figure: one row each for force, torque and TCP, sharing the time axis."""
+    """The figure: one row each for force, torque and TCP, sharing the time axis. Text from
+    the trace is drawn neutralised: a control character has no glyph, and matplotlib's
+    warning about it would echo the character to the terminal."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -97,7 +100,7 @@ def figure(rec: Recording, title: str) -> Any:
             ax.axvline(rec.end, color="k", ls="--", lw=1)
     for i, span in enumerate(skills):
         axes[0].annotate(
-            span.name.rsplit("/", 1)[-1],
+            printable(span.name.rsplit("/", 1)[-1]),
             ((span.start + span.end) / 2, 1.0),
             xycoords=("data", "axes fraction"),
             ha="center",
@@ -107,7 +110,7 @@ def figure(rec: Recording, title: str) -> Any:
         )
     if rec.outcome is not None:
         axes[2].annotate(
-            f"outcome: {rec.outcome}",
+            f"outcome: {printable(str(rec.outcome))}",
             (rec.end, 0.02),
             xycoords=("data", "axes fraction"),
             ha="right",
@@ -115,7 +118,7 @@ def figure(rec: Recording, title: str) -> Any:
             fontsize="small",
         )
     axes[-1].set_xlabel("simulated time [s]")
-    fig.suptitle(title)
+    fig.suptitle(printable(title))
     return fig
 
 
