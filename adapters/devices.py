@@ -369,7 +369,7 @@ class SimulatedCell:
             while remaining:
                 tick()
                 now = self.time
-                going_on = False  # the stop conditions of a command were checked, none held
+                tell = None  # on_tick, once a command's stop conditions held none
                 for entry in pending:
                     index, c, settled, value, first_holding, end = entry
                     running = c
@@ -379,7 +379,7 @@ class SimulatedCell:
                         if fired is not None:
                             result = CommandResult(fired, value)
                         else:
-                            going_on = True
+                            tell = on_tick
                     if result is None:
                         if now < end:
                             continue
@@ -390,9 +390,9 @@ class SimulatedCell:
                         self.hold()  # the other commands go on
                 if len(pending) > remaining:
                     pending = [entry for entry in pending if results[entry[0]] is None]
-                if going_on and on_tick is not None:
+                if tell is not None:
                     try:
-                        on_tick(live)
+                        tell(live)
                     except Exception as exc:
                         raise AdapterError(f"tick listener failed: {exc!r}") from exc
         except AdapterError:

@@ -84,8 +84,8 @@ class CommandRunner:
 
     def _call(self, requests: list[_Request]) -> list[Any]:
         """Run the commands together; the trace's tick listeners hear their control ticks."""
-        on_tick = self.trace.tick if self.trace.tick_listeners else None
-        return list(self.adapter.execute([r.command for r in requests], on_tick=on_tick))
+        commands = [r.command for r in requests]
+        return list(self.adapter.execute(commands, on_tick=self.trace.on_tick))
 
     def _run_commands(self) -> Done:
         """Run the commands of the actions entered in regions together, one per device."""

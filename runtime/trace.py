@@ -66,6 +66,11 @@ class Trace:
         return self.keep or bool(self.listeners)
 
     @property
+    def time(self) -> float:
+        """The time of the last record written (0 before the first)."""
+        return 0.0 if math.isnan(self._rounded) else self._rounded
+
+    @property
     def failure(self) -> OSError | None:
         """Why the file could not be written (see ``TraceFile.failure``)."""
         return None if self._file is None else self._file.failure
@@ -83,8 +88,16 @@ class Trace:
         for listener in self.listeners:
             listener(record)
 
+    @property
+    def on_tick(self) -> TickListener | None:
+        """What ``Adapter.execute`` tells of the control ticks: nothing without a tick
+        listener, the one listener itself (a call less on every tick), or ``tick``."""
+        if not self.tick_listeners:
+            return None
+        return self.tick_listeners[0] if len(self.tick_listeners) == 1 else self.tick
+
     def tick(self, snapshot: Snapshot) -> None:
-        """A control tick of a running command (``Adapter.execute``'s ``on_tick``)."""
+        """A control tick of a running command: told to every tick listener."""
         for listener in self.tick_listeners:
             listener(snapshot)
 
@@ -97,12 +110,18 @@ class Trace:
 
 
 class TraceFile:
-    """Writes records as JSON lines to a file (opened and closed here) or an open stream."""
+    """Writes records as JSON lines to a file (opened and closed here) or an open stream.
+
+    Every record reaches the file as it is written, one whole line at a time: a run that is
+    paused, or killed at any moment, leaves a trace that can be read up to its last record.
+    """
 
     def __init__(self, file: str | Path | IO[str]) -> None:
         self._owned = isinstance(file, str | Path)
         self._stream: IO[str] | None = (
-            open(file, "w", encoding="utf-8") if isinstance(file, str | Path) else file  # noqa: SIM115
+            open(file, "w", encoding="utf-8", buffering=1)  # noqa: SIM115 (line-buffered)
+            if isinstance(file, str | Path)
+            else file
         )
         self.failure: OSError | None = None
         """Why the file could not be written (a full disk): the records stay in memory and
@@ -111,6 +130,8 @@ class TraceFile:
     def write(self, record: Record) -> None:
         if self._stream is not None:
             self._guarded(self._stream.write, json.dumps(record) + "\n")
+        if self._stream is not None and not self._owned:
+            self._guarded(self._stream.flush)
 
     def close(self) -> None:
         if self._stream is not None and self._owned:

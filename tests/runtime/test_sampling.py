@@ -110,3 +110,15 @@ def test_the_sampler_reads_the_devices_a_dry_run_learns_when_it_is_bound():
         [Command("robot", "move", {}, [StopCondition("done", settled)], 5.0)], trace.tick
     )
     assert "robot.wrench" in next(r for r in records if r["kind"] == "sample")
+
+
+def test_the_adapter_is_told_of_ticks_only_when_someone_listens():
+    trace = Trace(None)
+    assert trace.on_tick is None
+    first = []
+    trace.tick_listeners.append(first.append)
+    assert trace.on_tick == first.append  # the one listener itself: a call less per tick
+    second = []
+    trace.tick_listeners.append(second.append)
+    trace.on_tick("tick")
+    assert first == second == ["tick"]
