@@ -2,7 +2,7 @@
 registers them all in :data:`common.COMMANDS`, in the order ``--help`` lists them."""
 
 # isort: off
-from lightrocks.app.commands import check, fmt, generate, run, sweep  # noqa: F401
+from lightrocks.app.commands import check, verify, fmt, generate, run, sweep  # noqa: F401
 from lightrocks.app.commands import replay, plot, listing, lsp  # noqa: F401
 
 # isort: on
