@@ -24,6 +24,7 @@ def condition_findings(context: object) -> dict[str, list[Finding]]:
     values = ParameterValues(a.models)
     found: dict[str, list[Finding]] = defaultdict(list)
     if not a.typing.findings.get("LR0103") and not a.typing.findings.get("LR0304"):
+        own_files = {c.loaded.unit.package_position.file for c in a.models.components}
         for component in a.models.components:
             for region in component.region.regions():
                 if region.loaded is component.loaded:
@@ -32,8 +33,10 @@ def condition_findings(context: object) -> dict[str, list[Finding]]:
             if component.layer == "action":
                 for finding in Plausibility(a.typing, component).findings():
                     found[finding.code].append(finding)
-            for finding in degree_findings(component.unit):
-                found[finding.code].append(finding)
+        for file, expressions in a.typing.inferred.items():
+            if file in own_files:
+                for finding in degree_findings(expressions):
+                    found[finding.code].append(finding)
     context.cache["behaviour-conditions"] = found
     return found
 

@@ -33,7 +33,11 @@ KNOWN = set().union(*EFFECTIVE.values()) | {"import", "scene"}
 def ambiguous_imports(context: object) -> Iterator[Finding]:
     workspace: Workspace = context.workspace
     for loaded in workspace.checked_units():
+        if sum(1 for i in loaded.unit.imports if i.wildcard) < 2:
+            continue  # one wildcard import (and the explicit ones) cannot be ambiguous
         providers = _wildcard_providers(workspace, loaded)
+        if not providers:
+            continue
         for name, position in _used_names(loaded.unit):
             found = providers.get(name, [])
             if len(found) < 2:
@@ -84,13 +88,18 @@ def stereotype_has_effect(context: object) -> Iterator[Finding]:
                 yield from _misplaced(getattr(declaration, "stereotypes", ()), kind)
             continue
         component = a.models.component(_qualified(unit))
+        if component is None:
+            continue
         yield from _misplaced(unit.statechart.stereotypes, "statechart", component)
-        for node in ast.walk(unit.statechart.elements):
-            if isinstance(node, ast.State):
-                yield from _misplaced(node.stereotypes, "state")
-        if component is not None and component.layer == "action":
-            for node in ast.walk(unit.statechart.elements):
-                if isinstance(node, ast.Pseudostate):
+        own = [r for r in component.region.regions() if r.loaded is component.loaded]
+        for region in own:
+            for info in region.states.values():
+                if info.state.position.file == unit.package_position.file:
+                    yield from _misplaced(info.state.stereotypes, "state")
+        if component.layer == "action":
+            pseudostates = [p for region in own for p in region.pseudostates.values()]
+            for node in pseudostates:
+                if node.position.file == unit.package_position.file:
                     yield (
                         node.position,
                         f"{node.kind} '{node.name}' in an action has no effect: an action "

@@ -77,20 +77,19 @@ class Conditions:
         return list(outcomes)  # a completion takes declared outcomes, never timeout or error
 
     def _transitions(self, source: str, leaving: list[ast.Transition]) -> Iterator[Finding]:
-        keys = {id(t): self._keys(source, t) for t in leaving}
         candidates: dict[str, list[ast.Transition]] = {}
-        for transition in leaving:
-            for key in keys[id(transition)]:
-                candidates.setdefault(key, []).append(transition)
+        if len(leaving) > 1:
+            for transition in leaving:
+                for key in self._keys(source, transition):
+                    candidates.setdefault(key, []).append(transition)
         alone = all(len(c) == 1 for c in candidates.values())
         for transition in leaving:
             if transition.position.file != self._file:
                 continue  # inherited through <<extends>>: judged in its own file
             guard = transition.guard
             if guard is not None:
-                verdict = self._alone(guard) if alone else None
-                if verdict is None:
-                    verdict = self._judge_alone(guard, "guard")
+                trivial = alone and self._open(guard)  # may hold, may not: nothing to ask
+                verdict = None if trivial else self._judge_alone(guard, "guard")
                 if verdict is not None:
                     yield verdict
                     if verdict.code == "LR0601":
@@ -105,12 +104,10 @@ class Conditions:
             if not hidden:
                 yield from self._overlaps(transition, earlier)
 
-    def _alone(self, guard: ast.Expression) -> Finding | None:
-        """Nothing to report, decided without the solver: a guard that compares one value
-        without a declared range with something that does not read it may hold and may not."""
-        return None if self._open(guard) else self._judge_alone(guard, "guard")
-
     def _open(self, expression: ast.Expression) -> bool:
+        """Decided without the solver: a guard that compares one value without a declared
+        range with something that does not read it (or a Boolean read as it is) may hold
+        and may not."""
         if isinstance(expression, ast.Unary) and expression.operator == "!":
             return self._open(expression.operand)
         variable = self.scope.variable(expression)
@@ -128,7 +125,7 @@ class Conditions:
                 and variable.sort != "Bool"
                 and variable.low is None
                 and variable.high is None
-                and variable.path not in _paths(other)
+                and not _reads_path(other, variable.path)
             ):
                 return True
         return False
@@ -315,8 +312,8 @@ class Conditions:
         for expression in expressions:
             if expression.position.file != self._file:
                 continue
-            for node in ast.walk(expression):
-                if isinstance(node, ast.Binary) and node.operator in ("==", "!="):
+            for node in _equalities(expression):
+                if node.operator in ("==", "!="):
                     measured = self._measured(node)
                     if measured:
                         yield Finding(
@@ -360,6 +357,23 @@ def start_of(expression: ast.Expression) -> ast.Position:
                 return expression.position
 
 
+def _equalities(expression: ast.Expression) -> list[ast.Binary]:
+    """The binary operations of a condition, through operators and call arguments only
+    (a generic walk over every node costs a hundredfold on large models)."""
+    found = []
+    pending = [expression]
+    while pending:
+        node = pending.pop()
+        if isinstance(node, ast.Binary):
+            found.append(node)
+            pending += [node.left, node.right]
+        elif isinstance(node, ast.Unary):
+            pending.append(node.operand)
+        elif isinstance(node, ast.Call):
+            pending += [a.value for a in node.arguments]
+    return found
+
+
 def _same_effect(one: ast.Transition, other: ast.Transition) -> bool:
     return (one.target, one.target_history, one.action) == (
         other.target,
@@ -368,13 +382,30 @@ def _same_effect(one: ast.Transition, other: ast.Transition) -> bool:
     )
 
 
-def _paths(expression: ast.Expression) -> set[str]:
-    found = set()
-    for node in ast.walk(expression):
-        chain = _chain(node) if isinstance(node, ast.Name | ast.Member) else None
-        if chain is not None:
-            found.update(".".join(chain[:i]) for i in range(1, len(chain) + 1))
-    return found
+def _reads_path(expression: ast.Expression, path: str) -> bool:
+    """Whether an expression reads ``path`` or a part of it (through operators, calls,
+    members and indexes; a generic walk costs a hundredfold on large models)."""
+    pending = [expression]
+    while pending:
+        node = pending.pop()
+        if isinstance(node, ast.Name | ast.Member):
+            chain = _chain(node)
+            if chain is not None:
+                text = ".".join(chain)
+                if text == path or path.startswith(f"{text}.") or text.startswith(f"{path}."):
+                    return True
+                continue
+        if isinstance(node, ast.Binary):
+            pending += [node.left, node.right]
+        elif isinstance(node, ast.Unary):
+            pending.append(node.operand)
+        elif isinstance(node, ast.Call):
+            pending += [a.value for a in node.arguments]
+        elif isinstance(node, ast.Member | ast.Index):
+            pending.append(node.target)
+        elif isinstance(node, ast.VectorLiteral):
+            pending += list(node.elements)
+    return False
 
 
 def _reads(formula: z3.ExprRef, path: str) -> bool:

@@ -346,10 +346,11 @@ def _file(component: Component) -> str:
     return component.loaded.unit.package_position.file
 
 
-def degree_findings(unit: ast.StatechartUnit) -> Iterator[Finding]:
-    """LR0609: a number of degrees that is a multiple of π."""
+def degree_findings(expressions: list[tuple[ast.Expression, object]]) -> Iterator[Finding]:
+    """LR0609: a number of degrees that is a multiple of π, among the typed expressions of a
+    file (the typing pass keeps every one)."""
     factor = lookup("deg").factor
-    for node in ast.walk(unit.statechart):
+    for node, _ in expressions:
         if isinstance(node, ast.Quantity) and node.unit == "deg":
             number = abs(node.value / factor)
             for name, value in MULTIPLES_OF_PI.items():
