@@ -19,8 +19,8 @@ import z3
 
 from lightrocks.languages.lightrocks.behaviour.judge import Judge, show
 from lightrocks.languages.lightrocks.behaviour.parameters import ParameterValues
-from lightrocks.languages.lightrocks.behaviour.scope import Scope, _chain
-from lightrocks.languages.lightrocks.behaviour.terms import COMPARISONS, Terms, _exact
+from lightrocks.languages.lightrocks.behaviour.scope import Scope, names_of
+from lightrocks.languages.lightrocks.behaviour.terms import COMPARISONS, Terms, exact
 from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
@@ -389,7 +389,7 @@ def _reads_path(expression: ast.Expression, path: str) -> bool:
     while pending:
         node = pending.pop()
         if isinstance(node, ast.Name | ast.Member):
-            chain = _chain(node)
+            chain = names_of(node)
             if chain is not None:
                 text = ".".join(chain)
                 if text == path or path.startswith(f"{text}.") or text.startswith(f"{path}."):
@@ -422,7 +422,7 @@ def _reads(formula: z3.ExprRef, path: str) -> bool:
 
 
 def _value(term: z3.ExprRef, value: float) -> z3.ExprRef:
-    return z3.IntVal(int(value)) if z3.is_int(term) else _exact(value)
+    return z3.IntVal(int(value)) if z3.is_int(term) else exact(value)
 
 
 def _text(judge: Judge, term: z3.BoolRef) -> str:
@@ -435,7 +435,7 @@ def _text(judge: Judge, term: z3.BoolRef) -> str:
 
 
 def _bound(variable: object, value: float | None) -> str:
-    return "" if value is None else show(variable, _exact(value))
+    return "" if value is None else show(variable, exact(value))
 
 
 def _start_text(conditions: Conditions, term: z3.BoolRef) -> str:

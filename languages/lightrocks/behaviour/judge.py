@@ -50,7 +50,7 @@ class Judge:
 
     def witness(self, model: z3.ModelRef, formula: z3.ExprRef) -> str:
         """The values of the model's variables that ``formula`` reads, as the model reads."""
-        names = {str(c) for c in _constants(formula)}
+        names = {str(c) for c in constants(formula)}
         parts = []
         for path, (variable, term) in sorted(self.terms.read.items()):
             if path not in names or variable.kind == "unknown":
@@ -79,7 +79,7 @@ def show(variable: Variable, value: z3.ExprRef) -> str:
     return f"{number / lookup(unit).factor:g} {unit}"
 
 
-def _constants(formula: z3.ExprRef) -> list[z3.ExprRef]:
+def constants(formula: z3.ExprRef) -> list[z3.ExprRef]:
     found, seen, pending = [], set(), [formula]
     while pending:
         term = pending.pop()

@@ -22,7 +22,7 @@ from lightrocks.languages.domain.types import DeviceT
 from lightrocks.languages.lightrocks.behaviour.conditions import Finding, start_of
 from lightrocks.languages.lightrocks.behaviour.judge import Judge
 from lightrocks.languages.lightrocks.behaviour.scope import Scope
-from lightrocks.languages.lightrocks.behaviour.terms import Terms, _exact
+from lightrocks.languages.lightrocks.behaviour.terms import Terms, exact
 from lightrocks.languages.lightrocks.cocos_safety import DURATION
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.languages.lightrocks.typing import Typing
@@ -221,7 +221,7 @@ class Plausibility:
         for path, (variable, constant) in terms.read.items():
             value = self._value(self.defaults.get(path)) if variable.kind == "parameter" else None
             if _number(value):
-                facts.append(constant == _exact(float(value)))
+                facts.append(constant == exact(float(value)))
         return facts
 
 

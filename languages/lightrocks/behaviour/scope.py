@@ -58,7 +58,7 @@ class Scope:
 
     def variable(self, expression: ast.Expression) -> Variable | None:
         """The variable a name or member chain reads, or None when it is no scalar value."""
-        chain = _chain(expression)
+        chain = names_of(expression)
         if chain is None:
             return None
         path = ".".join(chain)
@@ -146,7 +146,7 @@ def _free(chain: list[str], kind: Type | None, origin: str) -> Variable | None:
     return Variable(".".join(chain), sort, kind=origin) if sort is not None else None
 
 
-def _chain(expression: ast.Expression) -> list[str] | None:
+def names_of(expression: ast.Expression) -> list[str] | None:
     """``a.b.c`` as ``["a", "b", "c"]``; None for anything but names and members."""
     names: list[str] = []
     while isinstance(expression, ast.Member):

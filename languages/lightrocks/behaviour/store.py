@@ -14,8 +14,8 @@ from fractions import Fraction
 
 import z3
 
-from lightrocks.languages.lightrocks.behaviour.judge import Judge, _constants
-from lightrocks.languages.lightrocks.behaviour.scope import Scope, _chain
+from lightrocks.languages.lightrocks.behaviour.judge import Judge, constants
+from lightrocks.languages.lightrocks.behaviour.scope import Scope, names_of
 from lightrocks.languages.lightrocks.behaviour.terms import Terms
 from lightrocks.languages.lightrocks.model import Region
 from lightrocks.languages.lightrocks.typing import Typing
@@ -99,7 +99,7 @@ class Evaluator:
         key = id(expression)
         if key not in self._read:
             term = self._terms.get(key)
-            names = {str(c) for c in _constants(term)} if term is not None else set()
+            names = {str(c) for c in constants(term)} if term is not None else set()
             self._read[key] = frozenset(p for p in self.terms.read if p in names)
         return self._read[key]
 
@@ -139,7 +139,7 @@ class Evaluator:
         """The store after an assignment (a command call changes no tracked value)."""
         if not isinstance(statement, ast.Assignment):
             return store
-        chain = _chain(statement.target)
+        chain = names_of(statement.target)
         if chain is None:
             return store
         path = resolve(".".join(chain), frame)

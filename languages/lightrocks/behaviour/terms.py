@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import z3
 
-from lightrocks.languages.lightrocks.behaviour.scope import Scope, _chain
+from lightrocks.languages.lightrocks.behaviour.scope import Scope, names_of
 from lightrocks.languages.lightrocks.behaviour.variables import Variable
 from lightrocks.metamodel import ast
 
@@ -37,7 +37,7 @@ class Terms:
             case ast.Quantity():
                 if expression.integral:
                     return z3.IntVal(int(expression.value))
-                return z3.RealVal(_exact(expression.value))
+                return z3.RealVal(exact(expression.value))
             case ast.BooleanLiteral():
                 return z3.BoolVal(expression.value)
             case ast.Name() | ast.Member():
@@ -65,9 +65,9 @@ class Terms:
         found = []
         for variable, term in self.read.values():
             if variable.low is not None:
-                found.append(term >= _exact(variable.low))
+                found.append(term >= exact(variable.low))
             if variable.high is not None:
-                found.append(term <= _exact(variable.high))
+                found.append(term <= exact(variable.high))
         return found
 
     # -- parts ----------------------------------------------------------------------------
@@ -108,7 +108,7 @@ class Terms:
     def _operand(self, expression: ast.Expression) -> z3.ExprRef | None:
         """A term; a name or member path without translation becomes a real read by path."""
         term = self.term(expression)
-        chain = _chain(expression) if term is None else None
+        chain = names_of(expression) if term is None else None
         if chain is not None:
             return self.variable_term(Variable(".".join(chain), "Real", kind="unknown"))
         return term
@@ -132,7 +132,7 @@ class Terms:
 
     def _opaque_bool(self, expression: ast.Expression) -> z3.BoolRef:
         """A Boolean that may be true or false: shared by mentions of the same path."""
-        chain = _chain(expression)
+        chain = names_of(expression)
         if chain is not None:
             path = ".".join(chain)
             variable = Variable(path, "Bool", kind="unknown")
@@ -163,6 +163,6 @@ def _real(term: z3.ExprRef) -> z3.ExprRef:
     return z3.ToReal(term) if z3.is_int(term) else term
 
 
-def _exact(value: float) -> z3.RatNumRef:
+def exact(value: float) -> z3.RatNumRef:
     """A float as the exact rational it stands for in decimal (``0.1`` is 1/10)."""
     return z3.RealVal(repr(float(value))) if "e" not in repr(float(value)) else z3.RealVal(value)

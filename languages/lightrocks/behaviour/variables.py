@@ -18,7 +18,6 @@ from lightrocks.languages.domain.types import (
     FRAME_MEMBERS,
     INTEGER,
     DeviceT,
-    ObjectT,
     QuantityT,
     StructT,
     Type,
@@ -92,7 +91,7 @@ def unit_of(expression: ast.Expression | None) -> str:
     return ""
 
 
-def element_bound(expression: ast.Expression | None, index: int, leaf: Type) -> float | None:
+def element_bound(expression: ast.Expression | None, index: int) -> float | None:
     """Element ``index`` of a bound: a vector literal has one per numeric leaf; a scalar is
     the bound of every leaf of its dimension."""
     if expression is None:
@@ -169,9 +168,9 @@ def sensor_variables(instance: str, device: DeviceT, sensor: ast.Sensor, kind: T
                 )
             )
             continue
-        low = element_bound(sensor.low, numeric, leaf.type)
-        high = element_bound(sensor.high, numeric, leaf.type)
-        start = element_bound(sensor.start, numeric, leaf.type)
+        low = element_bound(sensor.low, numeric)
+        high = element_bound(sensor.high, numeric)
+        start = element_bound(sensor.start, numeric)
         dimension = leaf.type.dimension if isinstance(leaf.type, QuantityT) else None
         if sensor.low is None and dimension is not None and not dimension.dimensionless:
             low, high = hull.bounds.get(dimension, (None, None))
@@ -197,8 +196,8 @@ def attribute_variable(obj: str, attribute: ast.Parameter, kind: Type) -> Variab
     sort = sort_of(kind)
     if sort is None:
         return None
-    low = element_bound(attribute.low, 0, kind)
-    high = element_bound(attribute.high, 0, kind)
+    low = element_bound(attribute.low, 0)
+    high = element_bound(attribute.high, 0)
     unit = unit_of(attribute.low) or unit_of(attribute.default)
     return Variable(f"{obj}.{attribute.name}", sort, unit, low, high, kind="attribute")
 
@@ -208,7 +207,3 @@ def parameter_variable(parameter: ast.Parameter, kind: Type) -> Variable | None:
     if sort is None:
         return None
     return Variable(parameter.name, sort, unit_of(parameter.default))
-
-
-def object_of(kind: Type) -> ObjectT | None:
-    return kind if isinstance(kind, ObjectT) else None
