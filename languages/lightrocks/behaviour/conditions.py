@@ -101,8 +101,8 @@ class Conditions:
             }
             hidden = list(self._shadowed(transition, earlier))
             yield from hidden
-            if not hidden:
-                yield from self._overlaps(transition, earlier)
+            if not hidden and source not in self.region.pseudostates:
+                yield from self._overlaps(transition, earlier)  # a choice is a priority list
 
     def _open(self, expression: ast.Expression) -> bool:
         """Decided without the solver: a guard that compares one value without a declared
