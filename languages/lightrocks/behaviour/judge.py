@@ -15,6 +15,7 @@ from lightrocks.languages.lightrocks.behaviour.variables import Variable
 from lightrocks.metamodel.units import lookup
 
 TIMEOUT_MS = 500
+MAX_ANSWERS = 50_000
 _ANSWERS: dict[tuple[int, ...], tuple[z3.ModelRef | bool, list[z3.BoolRef]]] = {}
 
 
@@ -37,6 +38,8 @@ class Judge:
         solver.add(*assertions)
         answer = solver.check()
         found = solver.model() if answer == z3.sat else answer != z3.unsat
+        if len(_ANSWERS) >= MAX_ANSWERS:  # a language server runs for hours: start afresh
+            _ANSWERS.clear()
         _ANSWERS[key] = (found, assertions)
         return found
 
