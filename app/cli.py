@@ -37,7 +37,7 @@ def parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
     checkcache.use_store(checkstore.DiskStore())  # an unchanged workspace is not checked again
-    if args.command != "check":  # check loads the parser only when its findings are not on disk
+    if args.command not in ("check", "lsp"):  # check parses only on a miss; lsp keeps memory
         keep_parses_on_disk()
     try:
         return COMMANDS[args.command][1](args)
