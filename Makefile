@@ -35,6 +35,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_sweep.py
 	$(BIN)/python benchmarks/bench_incremental.py
 	$(BIN)/python benchmarks/bench_monitor.py
+	$(BIN)/python benchmarks/bench_verify.py
 
 PICTURES := examples/screwing/skills/ScrewIn.lr examples/screwing/tasks/ScrewTask.lr \
 	examples/din_rail/tasks/AssembleRail.lr examples/din_rail_ahead/tasks/PlugTerminalAhead.lr
