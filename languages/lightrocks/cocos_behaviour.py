@@ -50,7 +50,7 @@ def _conditions(code: str, severity: Severity, summary: str):
     return check
 
 
-never_holds = _conditions("LR0601", Severity.ERROR, "a guard or condition can hold")
+never_holds = _conditions("LR0601", Severity.WARNING, "a guard or condition can hold")
 always_holds = _conditions("LR0602", Severity.WARNING, "a guard or condition does not always hold")
 holds_at_start = _conditions(
     "LR0603", Severity.WARNING, "an end condition does not already hold when its command starts"

@@ -58,10 +58,10 @@ def test_a_refuted_property_has_its_position_and_path(
 
 
 def test_an_error_in_check_stops_before_the_model_checker(tmp_path: Path) -> None:
-    root, file, _ = broken("01-LR0601-Touch", tmp_path)
+    root, file, _ = broken("36-LR0221-LocalizeScrew", tmp_path)
     result = verify([file], [root])
     assert result.failed
-    assert {d.code for d in result.diagnostics} == {"LR0601"}
+    assert {d.code for d in result.diagnostics} == {"LR0221"}
     assert result.counterexamples == []
 
 
