@@ -65,8 +65,10 @@ def drive(
 
     The chart's ``start`` checks the binding before its first step; a run that cannot start
     leaves no trace file behind. A cell that does not fit the adapter is the model's mistake.
+    A run stopped by Ctrl-C ends its trace with ``interrupted`` and ``finished``.
     """
     from lightrocks.runtime import BindingError, Trace
+    from lightrocks.runtime.faults import INTERRUPTED
     from lightrocks.runtime.sampling import Sampler
 
     chart = cls(**params)
@@ -101,6 +103,10 @@ def drive(
                 chart.advance(step)
     except BindingError as error:
         misfit = error
+    except KeyboardInterrupt:
+        if chart.outcome == INTERRUPTED:  # the arm holds; the trace says how the run ended
+            recorder.write(recorder.time, "finished", outcome=INTERRUPTED)
+        raise
     finally:
         recorder.close()
     if misfit is not None:

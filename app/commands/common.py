@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -25,6 +26,13 @@ def command(
         return run
 
     return register
+
+
+def note(message: str) -> None:
+    """A remark on stderr that does not stop the command; shown neutralised."""
+    from lightrocks.workbench.report import printable
+
+    print(f"lightrocks: note: {printable(message)}", file=sys.stderr)
 
 
 class UsageError(Exception):

@@ -13,6 +13,7 @@ from lightrocks.app.commands.common import (
     UsageError,
     command,
     existing_paths,
+    note,
 )
 from lightrocks.workbench.report import printable
 
@@ -37,7 +38,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
     if not output.parent.is_dir():
         raise UsageError(f"-o: no such folder: {output.parent}")
     try:
-        recorded = plot(trace, output)
+        recorded = plot(trace, output, note)
     except TraceError as error:
         print(f"lightrocks: error: {printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS

@@ -12,6 +12,7 @@ from lightrocks.app.commands.common import (
     UsageError,
     command,
     existing_paths,
+    note,
     path_option,
     statechart_file,
 )
@@ -42,7 +43,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
     trace = existing_paths([args.trace])[0]
     address = monitor_address(args.monitor)
     try:
-        records = read_trace(trace)
+        records = read_trace(trace, note)
         name = task_name(records)
     except TraceError as error:
         print(f"lightrocks: error: {printable(str(error))}", file=sys.stderr)

@@ -11,6 +11,9 @@ import threading
 from collections.abc import Iterable
 from typing import Any
 
+ENDINGS = ("interrupted", "aborted", "finished")
+"""Records after which the run only ends: nothing pauses it any more."""
+
 
 def state_path(name: str) -> str:
     """``Task.Skill.Action`` (as on the command line) as the path the trace uses."""
@@ -40,6 +43,10 @@ class RunControl:
         """Abort was asked for and the run has not stopped yet."""
         self.where = ""
         """The breakpoint or step the run stopped at, for the page."""
+        self.ending = False
+        """The run is ending (Ctrl-C, an abort, its end): it pauses no more."""
+        self._lock = threading.Lock()
+        """Orders a page's pause against the run's end."""
         if not paused:
             self._running.set()
 
@@ -47,9 +54,18 @@ class RunControl:
     def paused(self) -> bool:
         return not self._running.is_set()
 
+    def end(self) -> None:
+        """Let the run end without pausing again, whatever the page asks."""
+        with self._lock:
+            self.ending = True
+            self._stepping = False
+            self._running.set()
+
     def pause(self) -> None:
-        self.where = ""
-        self._running.clear()
+        with self._lock:
+            if not self.ending:
+                self.where = ""
+                self._running.clear()
 
     def resume(self) -> None:
         self._stepping = False
@@ -78,6 +94,10 @@ class RunControl:
     def stops_at(self, record: dict[str, Any]) -> bool:
         """Whether the run pauses at this record: a breakpoint, or the end of a step; at an
         abort point the run is aborted instead."""
+        if record["kind"] in ENDINGS:
+            self.end()
+        if self.ending:
+            return False
         where = place(record)
         if where in self.aborts:
             self.abort()
@@ -90,4 +110,13 @@ class RunControl:
         return True
 
     def wait(self) -> None:
-        self._running.wait()
+        """Hold the run's thread until Resume, Step or Abort. Ctrl-C ends the run: the
+        executor stops it safely and no later record pauses it again. The wait wakes ten
+        times a second: a signal that another thread received is handled only when the run's
+        thread runs Python code."""
+        try:
+            while not self._running.wait(0.1):
+                pass
+        except KeyboardInterrupt:
+            self.end()
+            raise

@@ -7,6 +7,7 @@ import html
 import io
 import itertools
 import json
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -152,11 +153,12 @@ td,th{{border:1px solid #ccc;padding:2px 8px;text-align:left}}</style></head>
 """
 
 
-def plot(trace: Path, output: Path) -> Recording:
-    """Write the plot of ``trace`` to ``output`` (PNG or HTML, by its suffix)."""
+def plot(trace: Path, output: Path, note: Callable[[str], None] = lambda _: None) -> Recording:
+    """Write the plot of ``trace`` to ``output`` (PNG or HTML, by its suffix); ``note`` hears
+    of a last line cut off."""
     from lightrocks.workbench.files import write_atomic
 
-    rec = recording(read_trace(trace))
+    rec = recording(read_trace(trace, note))
     title = f"{trace.name}: outcome {rec.outcome or 'unfinished'}"
     fig = figure(rec, title)
     buffer = io.BytesIO() if output.suffix == ".png" else io.StringIO()

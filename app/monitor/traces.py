@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -11,21 +12,35 @@ class TraceError(ValueError):
     """The file is not a trace this tool can read."""
 
 
-def read_trace(path: Path) -> list[dict[str, Any]]:
+def read_trace(path: Path, note: Callable[[str], None] = lambda _: None) -> list[dict[str, Any]]:
+    """The records of a trace file. A last line without its line break that is no record was
+    cut off by a run that was killed: the records before it are read, and ``note`` is told."""
+    lines = path.read_bytes().split(b"\n")
     records = []
-    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+    for number, line in enumerate(lines, 1):
         if not line.strip():
             continue
         try:
-            record = json.loads(line)
-        except json.JSONDecodeError:
-            raise TraceError(f"{path}:{number}: not a JSON line") from None
-        except RecursionError:
-            raise TraceError(f"{path}:{number}: nested too deeply") from None
-        if not isinstance(record, dict) or "time" not in record or "kind" not in record:
-            raise TraceError(f"{path}:{number}: not a trace record")
-        records.append(record)
+            records.append(_record(path, number, line))
+        except TraceError:
+            if number < len(lines):
+                raise
+            note(f"{path}:{number}: the last line is cut off (was the run killed?); read up to it")
     return records
+
+
+def _record(path: Path, number: int, line: bytes) -> dict[str, Any]:
+    try:
+        record = json.loads(line.decode("utf-8"))
+    except UnicodeDecodeError:
+        raise TraceError(f"{path}:{number}: not UTF-8 text") from None
+    except json.JSONDecodeError:
+        raise TraceError(f"{path}:{number}: not a JSON line") from None
+    except RecursionError:
+        raise TraceError(f"{path}:{number}: nested too deeply") from None
+    if not isinstance(record, dict) or "time" not in record or "kind" not in record:
+        raise TraceError(f"{path}:{number}: not a trace record")
+    return record
 
 
 def header(records: list[dict[str, Any]]) -> tuple[Path | None, list[Path]]:

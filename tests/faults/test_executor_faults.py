@@ -241,7 +241,7 @@ def test_ctrl_c_holds_the_arm_and_ends_the_trace_with_interrupted(build):
     assert chart.finished and chart.outcome == "interrupted"
 
 
-def test_ctrl_c_on_the_command_line_exits_130_with_a_closed_trace(tmp_path, monkeypatch, capsys):
+def test_ctrl_c_on_the_command_line_exits_130_with_a_finished_trace(tmp_path, monkeypatch, capsys):
     write_models(tmp_path, {"Move": MOVE, "Skill": SKILL})
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     holds = []
@@ -257,7 +257,9 @@ def test_ctrl_c_on_the_command_line_exits_130_with_a_closed_trace(tmp_path, monk
     assert code == 130
     assert "interrupted" in capsys.readouterr().err
     assert holds == [1]
-    assert trace_records(trace)[-1]["kind"] == "interrupted"
+    *_, interrupted, finished = trace_records(trace)
+    assert interrupted["kind"] == "interrupted"
+    assert finished == {"time": interrupted["time"], "kind": "finished", "outcome": "interrupted"}
 
 
 class ClockFails(DryRunAdapter):
