@@ -166,24 +166,26 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
     return 0 if count == len(results) else 1
 
 
-_RATE_COLUMNS = ("runs", "successes", "success_rate", "wilson_low", "wilson_high")
+_RATE_COLUMNS = ("runs", "successes", "success_rate", "wilson_low", "wilson_high", "complete")
 
 
 def show_sweep(name: str, wanted: str | None, rows: list[dict[str, Any]], output: str) -> None:
-    """The sweep's table on stdout: a row per grid point with its rate and Wilson interval."""
+    """The sweep's table on stdout: a row per grid point with its rate and Wilson interval;
+    the points of a sweep stopped early that did not run every seed are marked."""
     from rich.console import Console
     from rich.table import Table
 
     label = printable(wanted or "finished without error")
-    table = Table(
-        title=f"{printable(name)}: success ({label}) per grid point", title_justify="left"
-    )
+    incomplete = "" if all(row["complete"] for row in rows) else " (incomplete)"
+    title = f"{printable(name)}: success ({label}) per grid point{incomplete}"
+    table = Table(title=title, title_justify="left")
     given = [column for column in rows[0] if column not in _RATE_COLUMNS]
     for column in [*given, "success", "95% Wilson"]:
         table.add_column(printable(column.replace("_", " ")), justify="right")
     for row in rows:
         cells = [f"{row[c]:g}" if isinstance(row[c], float) else printable(row[c]) for c in given]
         rate = f"{row['successes']}/{row['runs']} = {row['success_rate']:.0%}"
+        rate += "" if row["complete"] else " (incomplete)"
         interval = f"{row['wilson_low']:.0%}–{row['wilson_high']:.0%}"
         table.add_row(*cells, rate, interval)
     Console(highlight=False, markup=False).print(table)

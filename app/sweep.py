@@ -9,7 +9,7 @@ import itertools
 import logging
 import math
 import signal
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass
 from typing import Any
@@ -35,6 +35,8 @@ class PointSummary:
     point: GridPoint
     runs: int
     successes: int
+    complete: bool = True
+    """Whether every planned run of the point finished (not so in a sweep stopped early)."""
 
     @property
     def rate(self) -> float:
@@ -135,40 +137,49 @@ def sweep(
     seeds: Sequence[int],
     *,
     done: Callable[[GridPoint, RunResult], None] | None = None,
+    finished: Mapping[tuple[int, int], RunResult] | None = None,
 ) -> list[tuple[GridPoint, RunResult]]:
     """Run every grid point (its parsed run ``specs``, in the same order) over ``seeds`` on
-    the cluster; results in grid and seed order.
+    the cluster; results in grid and seed order. Runs in ``finished`` (by index of the
+    point and seed: a sweep resumed) are not run again; ``done`` hears of every other one
+    as it finishes.
 
     Each run is a pickled spec, deterministic per seed, so the scheduler may run a task
     again on another worker when its worker is lost. Ctrl-C cancels what has not finished.
     """
     from distributed import as_completed
 
-    jobs = [(point, seed) for point in points for seed in seeds]
-    runs = [spec.for_seed(seed) for spec in specs for seed in seeds]
-    futures = [client.submit(run, spec, pure=False) for spec in runs]
-    index = {future.key: job for future, job in zip(futures, jobs, strict=True)}
+    results = dict(finished or {})
+    jobs = [(i, seed) for i in range(len(points)) for seed in seeds]
+    todo = [job for job in jobs if job not in results]
+    futures = [client.submit(run, specs[i].for_seed(seed), pure=False) for i, seed in todo]
+    index = {future.key: job for future, job in zip(futures, todo, strict=True)}
     try:
         for future in as_completed(futures):
+            job = index[future.key]
+            results[job] = future.result()
             if done is not None:
-                done(index[future.key][0], future.result())
+                done(points[job[0]], results[job])
     except BaseException:
         client.cancel(futures)
         raise
-    return [(point, future.result()) for (point, _), future in zip(jobs, futures, strict=True)]
+    return [(points[i], results[i, seed]) for i, seed in jobs]
 
 
 def summarize(
-    points: Sequence[GridPoint], results: Sequence[tuple[GridPoint, RunResult]]
+    points: Sequence[GridPoint],
+    results: Sequence[tuple[GridPoint, RunResult]],
+    planned: int | None = None,
 ) -> list[PointSummary]:
-    return [
-        PointSummary(
-            point,
-            sum(p == point for p, _ in results),
-            sum(p == point and r.success for p, r in results),
-        )
-        for point in points
-    ]
+    """The runs and successes of every point; ``planned`` runs per point make it complete
+    (without it, every point is)."""
+    summaries = []
+    for point in points:
+        runs = sum(p == point for p, _ in results)
+        successes = sum(p == point and r.success for p, r in results)
+        complete = planned is None or runs >= planned
+        summaries.append(PointSummary(point, runs, successes, complete))
+    return summaries
 
 
 def _noise_columns(noise: Noise) -> dict[str, float]:
@@ -193,6 +204,7 @@ def point_rows(summaries: Sequence[PointSummary]) -> list[dict[str, Any]]:
                 "success_rate": summary.rate,
                 "wilson_low": low,
                 "wilson_high": high,
+                "complete": summary.complete,
             }
         )
     return rows

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from importlib.util import find_spec
 from pathlib import Path
+from typing import Any
 
 from lightrocks.app.commands.common import (
     EXIT_FINDINGS,
@@ -12,6 +13,7 @@ from lightrocks.app.commands.common import (
     UsageError,
     command,
     existing_paths,
+    note,
     run_arguments,
     statechart_file,
 )
@@ -46,15 +48,36 @@ def _configure_sweep(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "-o", "--output", default="sweep", help="folder for the tables and the plot (sweep)"
     )
+    parser.add_argument(
+        "--resume",
+        action="store_true",
+        help="run only what a stopped sweep with the same arguments into -o did not finish",
+    )
+
+
+def _arguments(args: argparse.Namespace, model: Path, models: str) -> dict[str, Any]:
+    """What decides a sweep's runs (not where they run): a resumed sweep must match them.
+    ``models`` names the generated code, a digest of every model the run loads."""
+    return {
+        "model": str(model),
+        "models": models,
+        "path": [str(p.resolve()) for p in existing_paths(args.path)],
+        "adapter": args.adapter,
+        "param": args.param,
+        "success": args.success,
+        "grid": args.grid,
+        "perception_noise": args.perception_noise,
+        "seed": args.seed,
+        "seeds": args.seeds,
+    }
 
 
 @command(_configure_sweep)
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from lightrocks.app import display, pipeline, sweep, values
+    from lightrocks.app import display, pipeline, sweep, sweeplog, values
     from lightrocks.app.errors import ModelError, RunError
     from lightrocks.app.run import success_outcome
     from lightrocks.app.specs import run_spec
-    from lightrocks.workbench.files import write_tree
     from lightrocks.workbench.generators import GenerationError
 
     missing = [m for m in ("distributed", "pyarrow", "matplotlib") if not find_spec(m)]
@@ -88,20 +111,78 @@ def cmd_sweep(args: argparse.Namespace) -> int:
             )
             for point in points
         ]
+        arguments = _arguments(args, model, cls.__module__.partition(".")[0])
+        finished = sweeplog.finished_runs(output, arguments, note) if args.resume else {}
+        journal = sweeplog.Journal(output, arguments, points, finished)
         seeds = range(args.seed, args.seed + args.seeds)
-        with (
-            display.progress_bar(cls.NAME, len(points) * len(seeds)) as advance,
-            sweep.dask_client(args.scheduler, args.workers) as client,
-        ):
-            results = sweep.sweep(
-                client, points, specs, seeds, done=lambda _, result: advance(result.success)
-            )
-        summaries = sweep.summarize(points, results)
-        write_tree(output, sweep.result_files(cls.NAME, summaries, results))
+        try:
+            results = _run(args, cls.NAME, points, specs, seeds, journal)
+        except KeyboardInterrupt:
+            _keep_finished(cls.NAME, wanted, points, seeds, journal, output)
+            raise
     except ModelError as error:
         print(error)
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
+    summaries = sweep.summarize(points, results, len(seeds))
+    _write(output, sweep.result_files(cls.NAME, summaries, results))
     display.show_sweep(cls.NAME, wanted, sweep.point_rows(summaries), str(output))
     return EXIT_OK
+
+
+def _run(
+    args: argparse.Namespace,
+    name: str,
+    points: list[Any],
+    specs: list[Any],
+    seeds: range,
+    journal: Any,
+) -> list[tuple[Any, Any]]:
+    """Every run not finished before, each journaled as it finishes."""
+    from lightrocks.app import display, sweep
+
+    def finished(point: Any, result: Any) -> None:
+        journal.add(point, result)
+        advance(result.success)
+
+    try:
+        with (
+            display.progress_bar(name, len(points) * len(seeds)) as advance,
+            sweep.dask_client(args.scheduler, args.workers) as client,
+        ):
+            for result in journal.done.values():
+                advance(result.success)
+            return sweep.sweep(
+                client, points, specs, seeds, done=finished, finished=dict(journal.done)
+            )
+    finally:
+        journal.close()
+
+
+def _keep_finished(
+    name: str, wanted: str | None, points: list[Any], seeds: range, journal: Any, output: Path
+) -> None:
+    """After Ctrl-C: the tables of the runs that finished, marked incomplete, and how to go
+    on; nothing when no run finished."""
+    from lightrocks.app import display, sweep
+
+    if not journal.done:
+        return
+    index = {i: point for i, point in enumerate(points)}
+    results = [
+        (index[i], journal.done[i, s]) for i in index for s in seeds if (i, s) in journal.done
+    ]
+    summaries = sweep.summarize(points, results, len(seeds))
+    _write(output, sweep.result_files(name, summaries, results))
+    display.show_sweep(name, wanted, sweep.point_rows(summaries), str(output))
+    note(
+        f"the sweep is incomplete: {len(results)} of {len(points) * len(seeds)} runs; "
+        "the same command with --resume runs the others"
+    )
+
+
+def _write(output: Path, files: dict[str, str | bytes]) -> None:
+    from lightrocks.workbench.files import write_tree
+
+    write_tree(output, files)
