@@ -18,7 +18,12 @@ from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
 from lightrocks.adapters.scene_registry import load_model
 from lightrocks.adapters.scenes import din_rail
-from lightrocks.runtime.contract import StopCondition
+from lightrocks.runtime.contract import Command, CommandResult, StopCondition
+
+
+def one(adapter, device: str, command: str, args: dict, stop: list, budget: float) -> CommandResult:
+    """One command alone, as an action runs it."""
+    return adapter.execute([Command(device, command, args, stop, budget)])[0]
 
 
 class Cell:
@@ -227,12 +232,12 @@ def _snap_on(adapter, terminal: str) -> ClickDetector:
 
     def move(x: float, z: float, speed: float) -> None:
         args = {"goal": pin.SE3(down, np.array([x, y, z])), "speed": speed}
-        assert adapter.execute("robot", "moveCartesian", args, reached, 5.0).outcome == "done"
+        assert one(adapter, "robot", "moveCartesian", args, reached, 5.0).outcome == "done"
 
-    assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+    assert one(adapter, "gripper", "open", {}, settled, 2.0).outcome == "done"
     move(din_rail.TRAY_X, 0.20, 0.2)
     move(din_rail.TRAY_X, din_rail.TERMINAL_TRAY_Z + GRASP_HEIGHT, 0.05)
-    assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
+    assert one(adapter, "gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
     move(din_rail.TRAY_X, 0.20, 0.1)
     move(din_rail.RAIL_X, 0.20, 0.2)
     move(din_rail.RAIL_X, din_rail.RAIL_LIP_TOP_Z + 0.004 + GRASP_HEIGHT, 0.05)
@@ -244,8 +249,8 @@ def _snap_on(adapter, terminal: str) -> ClickDetector:
         StopCondition("done", lambda s: s.robot.goalReached),
     ]
     args = {"goal": press, "speed": 0.005}
-    assert adapter.execute("robot", "moveCartesian", args, stop, 6.0).outcome == "clicked"
-    assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+    assert one(adapter, "robot", "moveCartesian", args, stop, 6.0).outcome == "clicked"
+    assert one(adapter, "gripper", "open", {}, settled, 2.0).outcome == "done"
     move(din_rail.RAIL_X, 0.20, 0.1)
     return click
 

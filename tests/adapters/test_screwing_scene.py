@@ -19,11 +19,16 @@ from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
 from lightrocks.adapters.scene_registry import load_model
 from lightrocks.adapters.scenes import screwing
-from lightrocks.runtime.contract import StopCondition
+from lightrocks.runtime.contract import Command, CommandResult, StopCondition
 
 HALF_TURN = math.pi
 HOLE = np.array([*screwing.SCREW_AXIS_XY, screwing.CUBE_TOP_Z])
 """The hole's mouth on the cube top."""
+
+
+def one(adapter, device: str, command: str, args: dict, stop: list, budget: float) -> CommandResult:
+    """One command alone, as an action runs it."""
+    return adapter.execute([Command(device, command, args, stop, budget)])[0]
 
 
 class Cell:
@@ -300,14 +305,12 @@ def _screw_in(adapter, *, turns: int = 12) -> tuple[list[tuple[str, float, float
         StopCondition("empty", lambda s: s.gripper.done),
     ]
     x, y = screwing.SCREW_AXIS_XY
-    assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+    assert one(adapter, "gripper", "open", {}, settled, 2.0).outcome == "done"
     for z, speed in ((GRASP_Z + 0.05, 0.2), (GRASP_Z, 0.05)):
         goal = pin.SE3(down, np.array([x, y, z]))
-        outcome = adapter.execute(
-            "robot", "moveCartesian", {"goal": goal, "speed": speed}, reached, 5
-        )
+        outcome = one(adapter, "robot", "moveCartesian", {"goal": goal, "speed": speed}, reached, 5)
         assert outcome.outcome == "done"
-    assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
+    assert one(adapter, "gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
 
     log = []
     advance = screwing.SCREW_PITCH * TURN / (2 * math.pi)  # a screw motion: turn and follow
@@ -330,17 +333,17 @@ def _screw_in(adapter, *, turns: int = 12) -> tuple[list[tuple[str, float, float
             StopCondition("torqueLimit", tight),
             StopCondition("done", lambda s: s.robot.goalReached),
         ]
-        outcome = adapter.execute("robot", "moveCartesian", args, stop, 6.0).outcome
+        outcome = one(adapter, "robot", "moveCartesian", args, stop, 6.0).outcome
         log.append((outcome, adapter.measurements()["screw_depth"], peak[0]))
         if outcome != "done":
             break
-        assert adapter.execute("gripper", "open", {}, settled, 2.0).outcome == "done"
+        assert one(adapter, "gripper", "open", {}, settled, 2.0).outcome == "done"
         back = adapter.snapshot().robot.tcp * pin.SE3(
             pin.rpy.rpyToMatrix(0.0, 0.0, -TURN), np.zeros(3)
         )
         args = {"goal": back, "angular_speed": 1.5}
-        assert adapter.execute("robot", "moveCartesian", args, reached, 6.0).outcome == "done"
-        assert adapter.execute("gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
+        assert one(adapter, "robot", "moveCartesian", args, reached, 6.0).outcome == "done"
+        assert one(adapter, "gripper", "close", {"force": 20.0}, grip, 2.0).outcome == "holding"
     return log, adapter.measurements()["screw_depth"]
 
 
