@@ -143,7 +143,7 @@ class Terms:
 
 def _arithmetic(operator: str, left: z3.ExprRef, right: z3.ExprRef) -> z3.ExprRef | None:
     if operator == "/":
-        return z3.ToReal(left) / z3.ToReal(right) if z3.is_int(left) else left / _real(right)
+        return _real(left) / _real(right)
     if operator == "%":
         return left % right if z3.is_int(left) and z3.is_int(right) else None
     left, right = _common(left, right)
