@@ -62,9 +62,12 @@ class Monitor:
                 return Response("a valid token is needed", status_code=403)
             return HTMLResponse(page.joinpath("index.html").read_text(encoding="utf-8"))
 
-        async def script(request: Request) -> Response:
-            text = page.joinpath("monitor.js").read_text(encoding="utf-8")
-            return Response(text, media_type="text/javascript")
+        def script(name: str) -> Any:
+            async def serve(request: Request) -> Response:
+                text = page.joinpath(name).read_text(encoding="utf-8")
+                return Response(text, media_type="text/javascript")
+
+            return serve
 
         async def task_svg(request: Request) -> Response:
             if not allowed(request):
@@ -120,7 +123,7 @@ class Monitor:
         return Starlette(
             routes=[
                 Route("/", index),
-                Route("/monitor.js", script),
+                *(Route(f"/{n}", script(n)) for n in ("monitor.js", "diagram.js", "plots.js")),
                 Route("/task.svg", task_svg),
                 Route("/control/{action}", control, methods=["POST"]),
                 WebSocketRoute("/stream", stream),

@@ -12,9 +12,6 @@ from lightrocks.app.monitor.feed import Feed
 from lightrocks.app.monitor.server import Monitor
 from lightrocks.runtime import Abort, Snapshot, Trace
 
-DEPTH = "3"
-"""Task, skill and action: the levels the page highlights."""
-
 
 class Watch:
     """Publishes every record to the page and holds the run's thread while it is paused;
@@ -64,15 +61,10 @@ class Watch:
 
 
 def task_svg(model: Path, search_path: list[Path], name: str) -> str:
-    """The Graphviz SVG of the model's statechart, nested down to its actions."""
-    from lightrocks.app import pipeline
-    from lightrocks.app.specs import generate_spec
+    """The diagram of the model's statechart, one picture per level (see ``app.diagram``)."""
+    from lightrocks.app.diagram import drawn
 
-    spec = generate_spec([model], search_path, "dot", {"render": "svg", "depth": DEPTH})
-    drawn = pipeline.generate(spec)
-    svg = next(v for k, v in drawn.items() if k.endswith(f"{name}.svg"))
-    text = svg.decode("utf-8") if isinstance(svg, bytes) else svg
-    return text[text.index("<svg") :]
+    return drawn(model, search_path, name).bundle()
 
 
 def monitor_for(

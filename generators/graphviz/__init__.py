@@ -2,16 +2,23 @@
 
 Options: ``depth=N`` also draws the content of imported statecharts N levels deep (as
 clusters); ``render=svg|png`` draws each ``.dot`` file beside it (see ``rendering``).
+``levels=yes`` draws one picture per chart level instead (see ``levels``): for each selected
+statechart ``<stem>/levels.json`` and, per level of it and of what it imports, a ``.dot``
+and an ``.svg`` that is drawn even where Graphviz fails (see ``drawing``).
 """
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
+from lightrocks.generators.graphviz.drawing import draw, level_template
 from lightrocks.generators.graphviz.graph import Graph, quote
+from lightrocks.generators.graphviz.levels import all_levels
 from lightrocks.generators.graphviz.rendering import FORMATS, render, renderer
-from lightrocks.generators.outputs import chart_stems, distinct
+from lightrocks.generators.outputs import chart_stems, distinct, shortened
 from lightrocks.generators.selection import selected
+from lightrocks.languages.lightrocks.model import Component
 from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
 TEMPLATES = Path(__file__).parent / "templates"
@@ -24,7 +31,8 @@ class DotGenerator:
     def description(self) -> str:
         found = renderer()
         drawn = f"rendered by {found}" if found else "no renderer installed"
-        return f"Graphviz DOT of statecharts (options depth=N, render=svg|png; {drawn})"
+        options = "depth=N, render=svg|png, levels=yes"
+        return f"Graphviz DOT of statecharts (options {options}; {drawn})"
 
     def generate(self, request: GenerationRequest) -> dict[str, str | bytes]:
         depth_text = request.options.get("depth", "0")
@@ -40,6 +48,11 @@ class DotGenerator:
         if not components:
             raise GenerationError("no statechart among the selected models")
         stems = chart_stems(components, qualified=True)
+        levels = request.options.get("levels", "")
+        if levels not in ("", "yes"):
+            raise GenerationError(f"option levels='{levels}': the only value is 'yes'")
+        if levels:
+            return _levels(components, stems, request)
         suffixes = ["dot", *([fmt] if fmt else [])]
         distinct({f"{stems[c.qualified_name]}.{s}": c for c in components for s in suffixes})
         files: dict[str, str | bytes] = {}
@@ -50,6 +63,30 @@ class DotGenerator:
             if fmt:
                 files[f"{stem}.{fmt}"] = render(text, fmt)
         return files
+
+
+def _levels(components, stems: dict[str, str], request: GenerationRequest) -> dict:
+    """Per selected chart: every level it shows, drawn, and the index of them."""
+    template = level_template(request.templates)
+    files: dict[str, str | bytes] = {}
+    owners: dict[str, Component | None] = {}
+    for component in components:
+        stem = stems[component.qualified_name]
+        index = []
+        for key, level in all_levels(component).items():
+            name = "/".join(shortened(part) for part in key.split("/"))
+            drawing = draw(level, template)
+            files[f"{stem}/{name}.dot"] = drawing.dot
+            files[f"{stem}/{name}.svg"] = drawing.svg
+            owners.update({f"{stem}/{name}.dot": component, f"{stem}/{name}.svg": component})
+            entry = {"key": key, "title": level.title, "layer": level.layer}
+            entry.update(file=f"{name}.svg", layout=drawing.how, drills=level.drills)
+            index.append(entry)
+        document = {"root": component.qualified_name, "levels": index}
+        files[f"{stem}/levels.json"] = json.dumps(document, indent=1, ensure_ascii=False)
+        owners[f"{stem}/levels.json"] = component
+    distinct(owners)
+    return files
 
 
 GENERATOR = DotGenerator()

@@ -73,8 +73,9 @@ class _Builder:
             text = condition.name
             if condition.expression is not None:
                 text += f" [{printer.expression(condition.expression)}]"
-            shape = "point" if condition.kind == "start" else "doublecircle"
-            cluster.nodes.append(Node(node_id, f"{condition.kind}: {text}", shape, "filled"))
+            rings = 1 if condition.kind == "start" else 2  # an end condition is a bullseye
+            label = f"{condition.kind}: {text}"
+            cluster.nodes.append(Node(node_id, label, "point", "filled", peripheries=rings))
             ends[condition.name] = node_id
         members: dict[str, tuple[str, str]] = {}
         for name, info in region.states.items():

@@ -34,7 +34,7 @@ CHROMEDRIVER = os.environ.get("CHROMEDRIVER", shutil.which("chromedriver") or ""
 WAIT = 300.0
 """Seconds a page may take to show what is expected (a limit, not a measurement)."""
 HIGHLIGHT = (1.0, 0.953, 0.769)
-"""The fill of the innermost active cluster (#fff3c4 in index.html)."""
+"""The fill of the innermost active state drawn (#fff3c4 in index.html)."""
 
 
 @pytest.fixture
@@ -111,17 +111,21 @@ class Page:
     def press(self, button: str) -> None:
         self.browser.find_element("id", button).click()
 
-    def cluster(self, path: str):
+    def element(self, path: str):
+        """What shows the state ``path`` on the level in view: its box, or the level's frame."""
         return next(
             g
-            for g in self.browser.find_elements("css selector", "#task g.cluster")
-            if g.find_element("tag name", "title").get_attribute("textContent") == f"cluster_{path}"
+            for g in self.browser.find_elements("css selector", "#task [data-path]")
+            if g.get_attribute("data-path") == path
         )
 
-    def click(self, element) -> None:
-        """A click on an SVG group (Selenium's own click needs a visible rectangle)."""
+    def click(self, element, kind: str = "click") -> None:
+        """A click on an SVG group (Selenium's own click needs a visible rectangle); a
+        ``contextmenu`` click toggles a breakpoint."""
         self.browser.execute_script(
-            "arguments[0].dispatchEvent(new MouseEvent('click', {bubbles: true}))", element
+            "arguments[0].dispatchEvent(new MouseEvent(arguments[1], {bubbles: true}))",
+            element,
+            kind,
         )
 
     def screenshot(self, path: Path) -> Path:
@@ -171,16 +175,17 @@ def test_step_breakpoint_and_abort(adapter: str, launch, browser, tmp_path: Path
     page.until(lambda: page.active == "ScrewTask/FindScrew")
     page.until(lambda: page.text("state") == "paused at ScrewTask/FindScrew")
 
-    drive_in = page.cluster("ScrewTask/DriveIn")
-    page.click(drive_in)
+    drive_in = page.element("ScrewTask/DriveIn")
+    page.click(drive_in, "contextmenu")
     page.until(lambda: "breakpoint" in drive_in.get_attribute("class"))
     page.press("resume")
     page.until(lambda: page.text("state") == "paused at ScrewTask/DriveIn")
     assert page.active == "ScrewTask/DriveIn"
-    assert "current" in drive_in.get_attribute("class")
-    assert "current" not in page.cluster("ScrewTask").get_attribute("class")
-    assert "active" in page.cluster("ScrewTask").get_attribute("class")
-    assert "active" not in page.cluster("ScrewTask/FindScrew").get_attribute("class")
+    drive_in = page.element("ScrewTask/DriveIn")  # the view followed the run in and out
+    assert {"current", "breakpoint"} <= set(drive_in.get_attribute("class").split())
+    assert "current" not in page.element("ScrewTask").get_attribute("class")
+    assert "active" in page.element("ScrewTask").get_attribute("class")
+    assert "active" not in page.element("ScrewTask/FindScrew").get_attribute("class")
     assert_shows_the_run(page.screenshot(tmp_path / f"monitor-{adapter}.png"))
     assert process.poll() is None, "the run ended while paused"
 

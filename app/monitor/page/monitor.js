@@ -1,8 +1,14 @@
-// The monitor page: highlights the active path, plots the samples, logs the trace.
+// The monitor page: shows the level of the active state, plots the samples, logs the trace.
 const token = new URLSearchParams(location.search).get("token");
 const query = "?token=" + encodeURIComponent(token);
 const WINDOW = 2000;
-let samples, active;
+let samples, active, breakpoints = [];
+
+const follow = document.getElementById("follow");
+const diagram = new DiagramView(document.getElementById("task"), document.getElementById("crumbs"), {
+  onNavigate: () => { follow.checked = false; },
+  onPick: path => control("break", path),
+});
 
 function reset() {
   samples = { force: [], torque: [], tcp: [] };
@@ -12,37 +18,22 @@ function reset() {
   document.getElementById("summary").textContent = "running";
 }
 
-function title(g) {
-  const t = g.querySelector("title");
-  return t ? t.textContent.replace(/^cluster_/, "") : "";
-}
-const CLICKABLE = "#task g.node, #task g.cluster, #task g.edge";
-
-// Every active state drawn gets an outline; the innermost one drawn is filled as well.
+// The level in view follows the innermost state entered last, unless the user navigates.
 function highlight() {
-  const groups = [...document.querySelectorAll("#task g.node, #task g.cluster")];
-  let current = null;
-  for (const path of active) current = groups.find(g => title(g) === path) || current;
-  groups.forEach(g => {
-    g.classList.toggle("active", active.includes(title(g)));
-    g.classList.toggle("current", g === current);
-  });
-  document.getElementById("task").dataset.active = active[active.length - 1] || "";
-}
-
-function markBreakpoints(points) {
-  document.querySelectorAll(CLICKABLE).forEach(g => {
-    g.classList.toggle("breakpoint", points.includes(title(g)));
-  });
+  const last = active[active.length - 1] || "";
+  if (follow.checked && diagram.levels.size) diagram.reveal(last);
+  diagram.highlight(active);
+  diagram.mark("breakpoint", breakpoints);
+  if (follow.checked) diagram.box.querySelector(".current")?.scrollIntoView({ block: "nearest" });
+  document.getElementById("task").dataset.active = last;
 }
 
 function apply(record) {
   if (record.kind === "enter") {
-    const depth = record.state.split("/").length;
-    active = active.filter(p => p.split("/").length < depth);
+    active = active.filter(p => p !== record.state);
     active.push(record.state);
   } else if (record.kind === "exit") {
-    active = active.filter(p => p !== record.state);
+    active = active.filter(p => p !== record.state && !p.startsWith(record.state + "/"));
   } else if (record.kind === "command") {
     document.getElementById("command").textContent =
       `${record.device}.${record.command} in ${record.state} (budget ${record.budget} s)`;
@@ -73,34 +64,23 @@ function apply(record) {
   log.scrollTop = log.scrollHeight;
 }
 
-function draw(id, list) {
-  const canvas = document.getElementById(id), ctx = canvas.getContext("2d");
-  ctx.clearRect(0, 0, canvas.width, canvas.height);
-  if (list.length < 2) return;
-  const t0 = list[0][0], t1 = list[list.length - 1][0] || t0 + 1;
-  let lo = Infinity, hi = -Infinity;
-  for (const [, v] of list) for (const x of v) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
-  if (hi - lo < 1e-9) { hi += 1; lo -= 1; }
-  ["#1f77b4", "#ff7f0e", "#2ca02c"].forEach((colour, axis) => {
-    ctx.strokeStyle = colour; ctx.beginPath();
-    list.forEach(([t, v], i) => {
-      const x = (t - t0) / (t1 - t0 || 1) * canvas.width;
-      const y = canvas.height - (v[axis] - lo) / (hi - lo) * canvas.height;
-      if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
-    });
-    ctx.stroke();
-  });
-  ctx.fillStyle = "#000"; ctx.fillText(`${id} [${lo.toFixed(3)}, ${hi.toFixed(3)}]`, 4, 12);
-}
-
 function showStatus(status) {
   document.getElementById("state").textContent = status.measurements ? "run over"
     : (status.paused ? "paused" : "running") + (status.where ? " at " + status.where : "");
   document.body.dataset.paused = status.paused;
-  markBreakpoints(status.breakpoints || []);
+  breakpoints = status.breakpoints || [];
+  diagram.mark("breakpoint", breakpoints);
   if (status.measurements) {
-    document.getElementById("measurements").innerHTML = Object.entries(status.measurements)
-      .map(([k, v]) => `<tr><td>${k}</td><td>${v}</td></tr>`).join("");
+    const rows = Object.entries(status.measurements).map(([name, value]) => {
+      const row = document.createElement("tr");
+      for (const text of [name, String(value)]) {
+        const cell = document.createElement("td");
+        cell.textContent = text;
+        row.appendChild(cell);
+      }
+      return row;
+    });
+    document.getElementById("measurements").replaceChildren(...rows);
   }
 }
 
@@ -111,10 +91,9 @@ async function control(action, at) {
 }
 
 async function start() {
-  const svg = await (await fetch("task.svg" + query)).text();
-  document.getElementById("task").innerHTML = svg;
-  document.querySelectorAll(CLICKABLE).forEach(g =>
-    g.addEventListener("click", event => { event.stopPropagation(); control("break", title(g)); }));
+  diagram.load(await (await fetch("task.svg" + query)).text());
+  diagram.reveal("");
+  follow.addEventListener("change", redraw);
   for (const action of ["pause", "resume", "step", "abort"]) {
     document.getElementById(action).addEventListener("click", () => control(action));
   }
@@ -132,7 +111,7 @@ async function start() {
 
 function redraw() {
   highlight();
-  for (const [id, list] of Object.entries(samples)) draw(id, list);
+  for (const [id, list] of Object.entries(samples)) drawPlot(document.getElementById(id), id, list);
 }
 
 // A recorded run: the slider picks a simulated time and the page shows the run up to it.
