@@ -20,6 +20,7 @@ from lightrocks.app.lsp import diagnostics, navigation
 from lightrocks.app.lsp.hover import expression_hover, quantity_hover
 from lightrocks.app.lsp.hover import hover as describe
 from lightrocks.app.lsp.index import Index
+from lightrocks.app.lsp.stdio import serve
 from lightrocks.app.lsp.text import Text
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import parsecache
@@ -192,5 +193,5 @@ def code_actions(ls: LightRocksServer, params: lsp.CodeActionParams) -> list[lsp
 
 def main() -> int:
     parsecache.use_store(None)  # memory only, whatever the command line installed
-    server.start_io()
+    serve(server)
     return 0
