@@ -207,8 +207,13 @@ def merged(edges: list[Edge]) -> list[Edge]:
         labels = [t for t in (first.label, edge.label) if t]
         joined = ", ".join(labels)
         fits = "\n" not in joined and len(joined) <= WIDTH
-        first.label = joined if fits else ",\n".join(labels)
+        first.label = joined if fits else "\n".join(_listed(labels))
     return list(arrows.values())
+
+
+def _listed(labels: list[str]) -> list[str]:
+    """Each label but the last ends with a comma (an action's own semicolon does)."""
+    return [t if t.endswith(";") or i == len(labels) - 1 else t + "," for i, t in enumerate(labels)]
 
 
 def _resolve(name: str, prefix: str, known: set[str]) -> str:

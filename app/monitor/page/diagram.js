@@ -15,6 +15,8 @@ class DiagramView {
     this.root = "";
     this.key = "";
     this.view = "";
+    this.active = [];
+    this.marks = {};
   }
 
   load(text) {
@@ -45,11 +47,19 @@ class DiagramView {
     return steps;
   }
 
-  // Show the level on which ``path`` is drawn as a box (or its deepest drawn ancestor).
-  reveal(path) {
-    const steps = this.chain(path || this.rootName);
-    if (steps.length > 1 && steps[steps.length - 1].view === path) steps.pop();
-    const last = steps[steps.length - 1];
+  // Show the deepest level that draws every one of ``paths`` as a box (or draws their
+  // deepest ancestors): one level for one active state, the level of their regions for
+  // states active in several regions.
+  reveal(paths) {
+    const chains = (paths.length ? paths : [this.rootName]).map(path => {
+      const steps = this.chain(path);
+      if (steps.length > 1 && steps[steps.length - 1].view === path) steps.pop();
+      return steps;
+    });
+    let depth = Math.min(...chains.map(c => c.length));
+    const same = i => chains.every(c => c[i].key === chains[0][i].key && c[i].view === chains[0][i].view);
+    while (depth > 1 && !same(depth - 1)) depth--;
+    const last = chains[0][depth - 1];
     this.open(last.key, last.view);
   }
 
@@ -67,6 +77,8 @@ class DiagramView {
     this.box.replaceChildren(svg);
     this.annotate(svg, level, view);
     this.breadcrumbs();
+    this.highlight(this.active);
+    for (const [name, paths] of Object.entries(this.marks)) this.mark(name, paths);
     return true;
   }
 
@@ -137,8 +149,9 @@ class DiagramView {
 
   // Outline every element that shows an active state; fill the innermost ones drawn.
   highlight(active) {
+    this.active = active;
     const within = (state, path) => state === path || state.startsWith(path + "/");
-    const innermost = active.filter(p => !active.some(q => q.startsWith(p + "/")));
+    const innermost = innermostOf(active);
     const shapes = this.elements().filter(g => !g.classList.contains("edge"));
     const current = new Set();
     for (const state of innermost) {
@@ -158,8 +171,14 @@ class DiagramView {
   }
 
   mark(name, paths) {
+    this.marks[name] = paths;
     for (const g of this.elements()) g.classList.toggle(name, paths.includes(g.dataset.path));
   }
+}
+
+// The active states no other active state is inside of.
+function innermostOf(active) {
+  return active.filter(p => !active.some(q => q.startsWith(p + "/")));
 }
 
 // Graphviz writes points; the page sizes in CSS pixels.

@@ -18,10 +18,10 @@ function reset() {
   document.getElementById("summary").textContent = "running";
 }
 
-// The level in view follows the innermost state entered last, unless the user navigates.
+// The level in view follows the innermost active states, unless the user navigates.
 function highlight() {
   const last = active[active.length - 1] || "";
-  if (follow.checked && diagram.levels.size) diagram.reveal(last);
+  if (follow.checked && diagram.levels.size) diagram.reveal(innermostOf(active));
   diagram.highlight(active);
   diagram.mark("breakpoint", breakpoints);
   if (follow.checked) diagram.box.querySelector(".current")?.scrollIntoView({ block: "nearest" });
@@ -92,7 +92,7 @@ async function control(action, at) {
 
 async function start() {
   diagram.load(await (await fetch("task.svg" + query)).text());
-  diagram.reveal("");
+  diagram.reveal([]);
   follow.addEventListener("change", redraw);
   for (const action of ["pause", "resume", "step", "abort"]) {
     document.getElementById(action).addEventListener("click", () => control(action));
