@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import html
 import io
-import itertools
 import json
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,6 +17,10 @@ from lightrocks.workbench.report import printable
 
 FORMATS = (".png", ".html")
 LAYERS = ("skill", "action")
+LABELS = 40
+RESOLUTION = 4000
+"""Bands are drawn to 1/4000 of the plotted time, a quarter of a pixel."""
+"""A skill is named on top when it spans at least 1/40 of the plotted time."""
 SIZE, DPI = (11, 8), 100
 """The figure in inches and the PNG's pixels per inch: 1100 x 800 pixels."""
 
@@ -86,12 +90,12 @@ def figure(rec: Recording, title: str) -> Any:
     )
     colours = matplotlib.colormaps["tab10"]
     skills = [s for s in rec.spans if s.layer == "skill"]
+    actions = [s for s in rec.spans if s.layer == "action"]
+    start = min([*rec.times[:1], *(s.start for s in rec.spans), rec.end])
+    resolution = max(rec.end - start, 1e-9) / RESOLUTION
     for ax, (label, values, scale) in zip(axes, rows, strict=True):
-        for i, span in enumerate(skills):
-            ax.axvspan(span.start, span.end, color=colours(i % 10), alpha=0.12, lw=0)
-        actions = [s for s in rec.spans if s.layer == "action"]
-        for span, grey in zip(actions, itertools.cycle(("0.3", "0.65")), strict=False):
-            ax.axvspan(span.start, span.end, ymin=0, ymax=0.04, color=grey, lw=0)
+        _bands(ax, skills, (0.0, 1.0), [colours(i) for i in range(10)], 0.12, resolution)
+        _bands(ax, actions, (0.0, 0.04), ["0.3", "0.65"], 1.0, resolution)
         for axis, name in enumerate("xyz"):
             ax.plot(rec.times, [v[axis] * scale for v in values], lw=1, label=name)
         ax.set_ylabel(label)
@@ -99,7 +103,9 @@ def figure(rec: Recording, title: str) -> Any:
         ax.legend(loc="upper right", fontsize="small")
         if rec.outcome is not None:
             ax.axvline(rec.end, color="k", ls="--", lw=1)
-    for i, span in enumerate(skills):
+    if rec.end > start:
+        axes[0].set_xlim(start, rec.end)
+    for i, span in _labelled(skills, rec.end - start):
         axes[0].annotate(
             printable(span.name.rsplit("/", 1)[-1]),
             ((span.start + span.end) / 2, 1.0),
@@ -121,6 +127,63 @@ def figure(rec: Recording, title: str) -> Any:
     axes[-1].set_xlabel("simulated time [s]")
     fig.suptitle(printable(title))
     return fig
+
+
+def _bands(
+    ax: Any,
+    spans: list[Span],
+    rows: tuple[float, float],
+    colours: list,
+    alpha: float,
+    resolution: float,
+) -> None:
+    """The spans as bands over the axis' height fraction ``rows``, coloured in turn: one
+    path per colour however many spans there are, bands closer than ``resolution`` merged,
+    so a long trace costs time in proportion to its length. In an SVG the bands are a
+    picture (the curves stay lines)."""
+    import numpy as np
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as Outline
+
+    low, high = rows
+    corners = [[0.0, low], [0.0, high], [0.0, high], [0.0, low], [0.0, low]]
+    steps = [Outline.MOVETO, Outline.LINETO, Outline.LINETO, Outline.LINETO, Outline.CLOSEPOLY]
+    for turn, colour in enumerate(colours):
+        chosen = _merged(spans[turn :: len(colours)], resolution)
+        if not chosen:
+            continue
+        vertices = np.tile(np.array(corners), (len(chosen), 1, 1))
+        vertices[:, :2, 0] = np.array([start for start, _ in chosen])[:, None]
+        vertices[:, 2:4, 0] = np.array([end for _, end in chosen])[:, None]
+        vertices[:, 4, 0] = vertices[:, 0, 0]
+        outline = Outline(vertices.reshape(-1, 2), np.tile(steps, len(chosen)))
+        band = PathPatch(outline, facecolor=colour, alpha=alpha, lw=0)
+        band.set_transform(ax.get_xaxis_transform())
+        band.set_rasterized(True)
+        ax.add_artist(band)
+
+
+def _merged(spans: list[Span], resolution: float) -> list[tuple[float, float]]:
+    """The spans as intervals snapped outwards to multiples of ``resolution`` (a fraction
+    of a pixel), overlapping or touching ones merged: what the picture can show apart."""
+    snapped = sorted(
+        (math.floor(s.start / resolution) * resolution, math.ceil(s.end / resolution) * resolution)
+        for s in spans
+    )
+    merged: list[tuple[float, float]] = []
+    for start, end in snapped:
+        if merged and start <= merged[-1][1]:
+            merged[-1] = (merged[-1][0], max(merged[-1][1], end))
+        else:
+            merged.append((start, end))
+    return merged
+
+
+def _labelled(skills: list[Span], duration: float) -> list[tuple[int, Span]]:
+    """The skills wide enough to carry their name (at most ``LABELS`` of them), with their
+    number for the colour."""
+    wide = [(i, s) for i, s in enumerate(skills) if s.end - s.start >= duration / LABELS]
+    return wide[: 2 * LABELS]
 
 
 def series(rec: Recording) -> str:
