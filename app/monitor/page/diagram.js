@@ -10,7 +10,7 @@ class DiagramView {
   constructor(box, crumbs, options = {}) {
     this.box = box;
     this.crumbs = crumbs;
-    this.options = options; // onNavigate(), onPick(path, element)
+    this.options = options; // onNavigate(), onPick(path, element), onOpen(key, view), selectOnClick
     this.levels = new Map();
     this.root = "";
     this.key = "";
@@ -79,6 +79,7 @@ class DiagramView {
     this.breadcrumbs();
     this.highlight(this.active);
     for (const [name, paths] of Object.entries(this.marks)) this.mark(name, paths);
+    this.options.onOpen?.(key, view);
     return true;
   }
 
@@ -100,8 +101,10 @@ class DiagramView {
       }
       if (path === null) continue;
       g.dataset.path = path;
+      g.dataset.element = g.classList.contains("cluster") ? title.replace(/^cluster_/, "") : title;
       if (Object.hasOwn(level.drills, title)) g.dataset.drill = level.drills[title];
       g.addEventListener("click", event => this.clicked(event, g));
+      g.addEventListener("dblclick", event => this.opened(event, g));
       g.addEventListener("contextmenu", event => {
         event.preventDefault();
         event.stopPropagation();
@@ -110,14 +113,19 @@ class DiagramView {
     }
   }
 
+  // A click opens a box's level, or (shift-click, or everywhere with ``selectOnClick``)
+  // picks the element; a double click always opens.
   clicked(event, g) {
     event.stopPropagation();
-    if (g.dataset.drill && !event.shiftKey) {
-      this.options.onNavigate?.();
-      this.open(g.dataset.drill, g.dataset.path);
-    } else {
-      this.options.onPick?.(g.dataset.path, g);
-    }
+    if (g.dataset.drill && !event.shiftKey && !this.options.selectOnClick) this.opened(event, g);
+    else this.options.onPick?.(g.dataset.path, g);
+  }
+
+  opened(event, g) {
+    event.stopPropagation();
+    if (!g.dataset.drill) return;
+    this.options.onNavigate?.();
+    this.open(g.dataset.drill, g.dataset.path);
   }
 
   breadcrumbs() {

@@ -1,0 +1,44 @@
+"""``lightrocks studio``: the models' diagrams in a local page, with the findings of
+``check`` on them, edited through the language's parser and pretty printer."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import sys
+import threading
+from importlib.util import find_spec
+
+from lightrocks.app.commands.common import EXIT_OK, UsageError, command, existing_paths
+
+
+def _configure_studio(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("studio", help="show and edit the models' diagrams in a local page")
+    parser.add_argument(
+        "paths", nargs="*", default=["."], metavar="MODEL_PATH", help="model-path folders"
+    )
+    parser.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: free)")
+
+
+@command(_configure_studio)
+def cmd_studio(args: argparse.Namespace) -> int:
+    """Serve the page on the loopback interface until Ctrl-C."""
+    if any(find_spec(m) is None for m in ("starlette", "uvicorn")):
+        raise UsageError("studio needs its web server: pip install 'lightrocks[monitor]'")
+    folders = existing_paths(args.paths)
+    if not all(folder.is_dir() for folder in folders):
+        raise UsageError("studio takes model-path folders")
+    if not 0 <= args.port < 65536:
+        raise UsageError(f"--port {args.port} is no port")
+    from lightrocks.app.studio.server import StudioServer
+    from lightrocks.app.studio.workspace import Studio
+
+    server = StudioServer(Studio(folders))
+    try:
+        url = server.serve(args.port)
+    except OSError as error:
+        raise UsageError(str(error)) from None
+    print(f"studio: {url}", file=sys.stderr, flush=True)
+    with contextlib.suppress(KeyboardInterrupt):
+        threading.Event().wait()
+    return EXIT_OK

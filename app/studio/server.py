@@ -1,0 +1,128 @@
+"""The studio's web server: the page, a chart's diagram and state, and edits; on the
+monitor's stack (starlette on uvicorn), on the loopback interface only.
+
+Every request carries the token printed with the URL. The server writes model files, so it
+also refuses requests for another host name than the one it listens on (a page of another
+site that rebinds its name to this machine) and edits whose Origin is another site.
+"""
+
+from __future__ import annotations
+
+import secrets
+import threading
+import time
+from importlib.resources import files
+from typing import Any
+
+from lightrocks.app.errors import ModelError
+from lightrocks.app.studio.edits import EditError
+from lightrocks.app.studio.workspace import Conflict, Studio
+from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench.generators import GenerationError
+
+HOST = "127.0.0.1"
+PAGES = {
+    "studio.js": "lightrocks.app.studio.page",
+    "diagram.js": "lightrocks.app.monitor.page",
+}
+"""The scripts the page loads and the packages they ship in (the diagram is the monitor's)."""
+
+
+class StudioServer:
+    def __init__(self, studio: Studio) -> None:
+        self.studio = studio
+        self.token = secrets.token_urlsafe(16)
+        self.port = 0
+
+    def app(self) -> Any:
+        from starlette.applications import Starlette
+        from starlette.requests import Request
+        from starlette.responses import HTMLResponse, JSONResponse, Response
+        from starlette.routing import Route
+
+        def refused(request: Request) -> Response | None:
+            given = request.query_params.get("token", "")
+            if not secrets.compare_digest(given.encode(), self.token.encode()):
+                return Response("a valid token is needed", status_code=403)
+            hosts = {f"{HOST}:{self.port}", f"localhost:{self.port}"}
+            if request.headers.get("host", "") not in hosts:
+                return Response("unknown host", status_code=403)
+            origin = request.headers.get("origin")
+            if origin is not None and origin not in {f"http://{h}" for h in hosts}:
+                return Response("edits come from the studio's page only", status_code=403)
+            return None
+
+        def guarded(handler: Any) -> Any:
+            async def serve(request: Request) -> Response:
+                return refused(request) or await handler(request)
+
+            return serve
+
+        async def index(request: Request) -> Response:
+            page = files("lightrocks.app.studio.page").joinpath("index.html")
+            return HTMLResponse(page.read_text(encoding="utf-8"))
+
+        def script(name: str) -> Any:
+            async def serve(request: Request) -> Response:
+                text = files(PAGES[name]).joinpath(name).read_text(encoding="utf-8")
+                return Response(text, media_type="text/javascript")
+
+            return serve
+
+        async def charts(request: Request) -> Response:
+            return JSONResponse(self.studio.charts())
+
+        async def diagram(request: Request) -> Response:
+            chart = request.query_params.get("chart", "")
+            try:
+                svg = self.studio.diagram(chart)
+            except KeyError as error:
+                return JSONResponse({"error": str(error.args[0])}, status_code=404)
+            except (GenerationError, ModelError) as error:
+                return JSONResponse({"error": str(error)}, status_code=422)
+            return Response(svg, media_type="image/svg+xml")
+
+        async def state(request: Request) -> Response:
+            try:
+                return JSONResponse(self.studio.state(request.query_params.get("chart", "")))
+            except KeyError as error:
+                return JSONResponse({"error": str(error.args[0])}, status_code=404)
+
+        async def edit(request: Request) -> Response:
+            body = await request.json()
+            chart = str(body.get("chart", ""))
+            try:
+                self.studio.edit(chart, str(body.get("version")), str(body.get("level")), body)
+            except Conflict as error:
+                return JSONResponse({"error": str(error)}, status_code=409)
+            except KeyError as error:
+                return JSONResponse({"error": f"missing {error}"}, status_code=422)
+            except (EditError, SyntaxProblem, ValueError) as error:
+                return JSONResponse({"error": str(error)}, status_code=422)
+            return JSONResponse(self.studio.state(chart))
+
+        return Starlette(
+            routes=[
+                Route("/", guarded(index)),
+                *(Route(f"/{name}", script(name)) for name in PAGES),
+                Route("/charts", guarded(charts)),
+                Route("/diagram.svg", guarded(diagram)),
+                Route("/state", guarded(state)),
+                Route("/edit", guarded(edit), methods=["POST"]),
+            ]
+        )
+
+    def serve(self, port: int = 0) -> str:
+        """Start serving on a daemon thread; the URL with the token once it listens."""
+        import uvicorn
+
+        config = uvicorn.Config(self.app(), host=HOST, port=port, log_level="warning")
+        server = uvicorn.Server(config)
+        thread = threading.Thread(target=server.run, name="studio", daemon=True)
+        thread.start()
+        while not server.started:
+            if not thread.is_alive():
+                raise OSError(f"the studio cannot listen on {HOST}:{port}")
+            time.sleep(0.02)
+        self.port = server.servers[0].sockets[0].getsockname()[1]
+        return f"http://{HOST}:{self.port}/?token={self.token}"
