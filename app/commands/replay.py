@@ -16,16 +16,14 @@ from lightrocks.app.commands.common import (
     path_option,
     statechart_file,
 )
-from lightrocks.app.commands.monitoring import monitor_address, serve
+from lightrocks.app.commands.monitoring import monitor_address, monitor_options, serve
 from lightrocks.workbench.report import printable
 
 
 def _configure_replay(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("replay", help="replay a recorded run in the monitor page")
     parser.add_argument("trace", help="a trace written by 'run --trace'")
-    parser.add_argument(
-        "--monitor", required=True, metavar="[HOST:]PORT", help="serve the page (host 127.0.0.1)"
-    )
+    monitor_options(parser, "the page")
     parser.add_argument("--model", help="the .lr file the run ran (default: named in the trace)")
     path_option(parser)
 
@@ -41,7 +39,9 @@ def cmd_replay(args: argparse.Namespace) -> int:
     from lightrocks.workbench.generators import GenerationError
 
     trace = existing_paths([args.trace])[0]
-    address = monitor_address(args.monitor)
+    if args.monitor is None:
+        raise UsageError("replay serves its page: give --monitor [HOST:]PORT")
+    address = monitor_address(args.monitor, args.monitor_public)
     try:
         records = read_trace(trace, note)
         name = task_name(records)

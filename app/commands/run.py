@@ -13,7 +13,7 @@ from lightrocks.app.commands.common import (
     statechart_file,
     trace_file,
 )
-from lightrocks.app.commands.monitoring import watch_for
+from lightrocks.app.commands.monitoring import monitor_options, watch_for
 
 
 def _configure_run(sub: argparse._SubParsersAction) -> None:
@@ -43,9 +43,7 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
         metavar="FILE",
         help="JSON file of scripted outcomes and sensor values for the dry run",
     )
-    parser.add_argument(
-        "--monitor", metavar="[HOST:]PORT", help="serve a live page of the run (host 127.0.0.1)"
-    )
+    monitor_options(parser, "a live page of the run")
     parser.add_argument(
         "--break",
         dest="breakpoints",
@@ -88,8 +86,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--workers needs --seeds and must be at least 1")
     if args.seeds is not None and args.video:
         raise UsageError("--video records a single run: leave out --seeds")
-    if (args.breakpoints or args.paused or args.aborts) and not args.monitor:
-        raise UsageError("--break, --abort-at and --paused need --monitor")
+    if (args.breakpoints or args.paused or args.aborts or args.monitor_public) and not args.monitor:
+        raise UsageError("--break, --abort-at, --paused and --monitor-public need --monitor")
     if args.monitor and args.seeds is not None:
         raise UsageError("--monitor watches a single run: leave out --seeds")
     try:

@@ -1,5 +1,6 @@
 """The monitor's web server: the page, the task's SVG, a websocket of the run's records and
-the control requests; every request carries the token printed with the URL.
+the control requests; every request carries the token printed with the URL, as the cookie
+the page's first load sets (see :mod:`.guard`).
 
 uvicorn serves on a daemon thread of its own, so the run's loop never waits for a browser.
 """
@@ -17,9 +18,11 @@ from typing import Any
 
 from lightrocks.app.monitor.control import RunControl
 from lightrocks.app.monitor.feed import Feed
+from lightrocks.app.monitor.guard import Guard, Guarded
 
 PUSH_PERIOD = 0.1
 """Seconds between two pushes of new records to a page."""
+SCRIPTS = ("monitor.js", "diagram.js", "plots.js")
 
 
 def parse_address(text: str) -> tuple[str, int]:
@@ -44,7 +47,9 @@ class Monitor:
     sent: dict[int, int] = field(default_factory=dict)
     """The number of the last record pushed to each open page (0 until the run is over)."""
 
-    def app(self) -> Any:
+    def app(self, guard: Guard) -> Any:
+        """The routes; ``guard`` knows the token (the ``Host`` and ``Origin`` checks wrap
+        the whole app, see :class:`~.guard.Guarded`)."""
         from starlette.applications import Starlette
         from starlette.requests import Request
         from starlette.responses import HTMLResponse, JSONResponse, Response
@@ -52,20 +57,25 @@ class Monitor:
         from starlette.websockets import WebSocket
 
         def allowed(request: Request | WebSocket) -> bool:
-            given = request.query_params.get("token", "")
-            return secrets.compare_digest(given.encode(), self.token.encode())
+            port = request.scope["server"][1]
+            return guard.authorised(request.cookies, request.query_params, port)
 
         page = files("lightrocks.app.monitor.page")
 
         async def index(request: Request) -> Response:
+            """The page; its first load, with the token in the URL, sets the cookie that
+            the page's later requests carry (the page then drops the token from the URL)."""
             if not allowed(request):
                 return Response("a valid token is needed", status_code=403)
-            return HTMLResponse(page.joinpath("index.html").read_text(encoding="utf-8"))
+            text = page.joinpath("index.html").read_text(encoding="utf-8")
+            cookie = {"Set-Cookie": guard.cookie(request.scope["server"][1])}
+            return HTMLResponse(text, headers=cookie)
 
-        def script(name: str) -> Any:
+        def asset(name: str, media_type: str) -> Any:
             async def serve(request: Request) -> Response:
-                text = page.joinpath(name).read_text(encoding="utf-8")
-                return Response(text, media_type="text/javascript")
+                return Response(
+                    page.joinpath(name).read_text(encoding="utf-8"), media_type=media_type
+                )
 
             return serve
 
@@ -123,7 +133,8 @@ class Monitor:
         return Starlette(
             routes=[
                 Route("/", index),
-                *(Route(f"/{n}", script(n)) for n in ("monitor.js", "diagram.js", "plots.js")),
+                *(Route(f"/{n}", asset(n, "text/javascript")) for n in SCRIPTS),
+                Route("/monitor.css", asset("monitor.css", "text/css")),
                 Route("/task.svg", task_svg),
                 Route("/control/{action}", control, methods=["POST"]),
                 WebSocketRoute("/stream", stream),
@@ -153,7 +164,10 @@ class Monitor:
         """Start serving on a daemon thread; the URL with the token once it listens."""
         import uvicorn
 
-        config = uvicorn.Config(self.app(), host=host, port=port, log_level="warning")
+        guard = Guard(host, self.token)
+        app = Guarded(self.app(guard), guard)
+        bind = host.strip("[]")
+        config = uvicorn.Config(app, host=bind, port=port, log_level="warning")
         server = uvicorn.Server(config)
         thread = threading.Thread(target=server.run, name="monitor", daemon=True)
         thread.start()
@@ -162,4 +176,5 @@ class Monitor:
                 raise OSError(f"the monitor cannot listen on {host}:{port}")
             time.sleep(0.02)
         bound = server.servers[0].sockets[0].getsockname()[1]
-        return f"http://{host}:{bound}/?token={self.token}"
+        shown = f"[{bind}]" if ":" in bind else bind
+        return f"http://{shown}:{bound}/?token={self.token}"

@@ -82,6 +82,7 @@ def browser():
     options.binary_location = CHROMIUM
     for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1400,1000"):
         options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})  # CSP reports land here
     driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
     yield driver
     driver.quit()
@@ -139,6 +140,22 @@ class Page:
 
 def records(trace: Path) -> list[dict]:
     return [json.loads(line) for line in trace.read_text().splitlines()]
+
+
+def test_the_page_keeps_its_token_out_of_sight_and_within_its_policy(launch, browser) -> None:
+    """The token leaves the address bar, the cookie that replaces it is out of the page's
+    scripts' reach, and the content security policy blocks nothing the page needs."""
+    url, _, _ = launch("run", str(SCREW_TASK), "--adapter", "dryrun", "--paused")
+    page = Page(browser, url)
+    page.until(lambda: page.text("state") == "paused" and page.active == "ScrewTask")
+    assert "token" not in browser.current_url
+    assert browser.execute_script("return document.cookie") == ""
+    page.press("step")
+    page.until(lambda: page.text("state").startswith("paused at ScrewTask/go->"))
+    blocked = [
+        e["message"] for e in browser.get_log("browser") if "Security Policy" in e["message"]
+    ]
+    assert not blocked
 
 
 def test_requests_without_the_token_are_refused(launch) -> None:

@@ -1,6 +1,6 @@
 // The monitor page: shows the level of the active state, plots the samples, logs the trace.
-const token = new URLSearchParams(location.search).get("token");
-const query = "?token=" + encodeURIComponent(token);
+// Its requests carry the cookie the page's first load set: the token leaves the address bar.
+history.replaceState(null, "", location.pathname);
 const WINDOW = 2000;
 let samples, active, breakpoints = [];
 
@@ -85,19 +85,19 @@ function showStatus(status) {
 }
 
 async function control(action, at) {
-  const extra = at ? "&at=" + encodeURIComponent(at) : "";
-  const answer = await fetch("control/" + action + query + extra, { method: "POST" });
+  const where = at ? "?at=" + encodeURIComponent(at) : "";
+  const answer = await fetch("control/" + action + where, { method: "POST" });
   showStatus(await answer.json());
 }
 
 async function start() {
-  diagram.load(await (await fetch("task.svg" + query)).text());
+  diagram.load(await (await fetch("task.svg")).text());
   diagram.reveal([]);
   follow.addEventListener("change", redraw);
   for (const action of ["pause", "resume", "step", "abort"]) {
     document.getElementById(action).addEventListener("click", () => control(action));
   }
-  const socket = new WebSocket(location.href.replace(/^http/, "ws").replace(/\/[^/]*$/, "/stream") + query);
+  const socket = new WebSocket(location.href.replace(/^http/, "ws").replace(/\/[^/]*$/, "/stream"));
   socket.onmessage = message => {
     const data = JSON.parse(message.data);
     if (data.title) document.getElementById("title").textContent = data.title;
