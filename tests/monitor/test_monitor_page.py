@@ -313,3 +313,25 @@ def test_replay_with_the_time_slider(launch, browser, tmp_path: Path) -> None:
     with pytest.raises(urllib.error.HTTPError) as error:
         urllib.request.urlopen(refused, timeout=30)
     assert error.value.code == 409
+
+
+def test_a_long_replay_plays_in_time(launch, browser, tmp_path: Path) -> None:
+    """Moving the slider on applies only the records it passes, and the log is laid out
+    once per move: 20,000 skill spans replay from start to end well within the limit."""
+    from .test_long_traces import records as long_run
+
+    trace = tmp_path / "long.jsonl"
+    trace.write_text("".join(json.dumps(r) + "\n" for r in long_run(20_000)), encoding="utf-8")
+    url, _, _ = launch("replay", str(trace))
+    started = time.monotonic()
+    page = Page(browser, url)
+    page.until(lambda: page.text("summary") == "outcome: screwed")
+    slider = browser.find_element("id", "slider")
+    for moment in (0.0, *(i * 20.0 for i in range(1, 11))):
+        browser.execute_script(
+            "arguments[0].value = arguments[1];arguments[0].dispatchEvent(new Event('input'))",
+            slider,
+            moment,
+        )
+    page.until(lambda: page.text("summary") == "outcome: screwed")
+    assert time.monotonic() - started < 120.0

@@ -54,14 +54,14 @@ function apply(record) {
         samples.tcp.push([record.time, value]);
       }
     }
-    for (const list of Object.values(samples)) if (list.length > WINDOW) list.splice(0, list.length - WINDOW);
+    // Trimmed in batches: trimming at every sample would move the whole window each time.
+    for (const list of Object.values(samples)) if (list.length > 2 * WINDOW) list.splice(0, list.length - WINDOW);
     return;
   }
   const line = document.createElement("div");
   line.textContent = JSON.stringify(record);
   const log = document.getElementById("log");
   log.appendChild(line);
-  log.scrollTop = log.scrollHeight;
 }
 
 function showStatus(status) {
@@ -109,9 +109,12 @@ async function start() {
   };
 }
 
+// Once per batch of records: reading the log's height lays the page out.
 function redraw() {
   highlight();
-  for (const [id, list] of Object.entries(samples)) drawPlot(document.getElementById(id), id, list);
+  for (const [id, list] of Object.entries(samples)) drawPlot(document.getElementById(id), id, list.slice(-WINDOW));
+  const log = document.getElementById("log");
+  log.scrollTop = log.scrollHeight;
 }
 
 // A recorded run: the slider picks a simulated time and the page shows the run up to it.
@@ -122,10 +125,15 @@ function replay(records) {
   const end = records.length ? records[records.length - 1].time : 0;
   slider.max = end;
   slider.step = "any";
+  // Moving on applies only the records passed; moving back starts again from the first.
+  let applied = 0;
   const show = () => {
     const until = Number(slider.value);
-    reset();
-    records.filter(r => r.time <= until).forEach(apply);
+    if (applied > 0 && records[applied - 1].time > until) {
+      reset();
+      applied = 0;
+    }
+    while (applied < records.length && records[applied].time <= until) apply(records[applied++]);
     document.getElementById("at").textContent = until.toFixed(3) + " s of " + end.toFixed(3) + " s";
     redraw();
   };
