@@ -22,10 +22,12 @@ from lightrocks.workbench.generators import GenerationError
 
 HOST = "127.0.0.1"
 PAGES = {
-    "studio.js": "lightrocks.app.studio.page",
-    "diagram.js": "lightrocks.app.monitor.page",
+    "studio.js": ("lightrocks.app.studio.page", "text/javascript"),
+    "studio.css": ("lightrocks.app.studio.page", "text/css"),
+    "diagram.js": ("lightrocks.app.monitor.page", "text/javascript"),
 }
-"""The scripts the page loads and the packages they ship in (the diagram is the monitor's)."""
+"""The files the page loads, the packages they ship in (the diagram is the monitor's) and
+their media types."""
 
 
 class StudioServer:
@@ -62,10 +64,12 @@ class StudioServer:
             page = files("lightrocks.app.studio.page").joinpath("index.html")
             return HTMLResponse(page.read_text(encoding="utf-8"))
 
-        def script(name: str) -> Any:
+        def asset(name: str) -> Any:
+            package, media = PAGES[name]
+
             async def serve(request: Request) -> Response:
-                text = files(PAGES[name]).joinpath(name).read_text(encoding="utf-8")
-                return Response(text, media_type="text/javascript")
+                text = files(package).joinpath(name).read_text(encoding="utf-8")
+                return Response(text, media_type=media)
 
             return serve
 
@@ -104,7 +108,7 @@ class StudioServer:
         return Starlette(
             routes=[
                 Route("/", guarded(index)),
-                *(Route(f"/{name}", script(name)) for name in PAGES),
+                *(Route(f"/{name}", asset(name)) for name in PAGES),
                 Route("/charts", guarded(charts)),
                 Route("/diagram.svg", guarded(diagram)),
                 Route("/state", guarded(state)),

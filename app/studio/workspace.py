@@ -106,13 +106,18 @@ class Studio:
         ]
         return {
             "chart": chart,
-            "file": str(file),
+            "file": self.shown(file),
             "layer": layer,
             "version": version(file.read_text(encoding="utf-8")),
             "findings": placed(snapshot.context.diagnostics.items, file, marks),
             "palette": palette,
             "outcomes": outcomes(component),
         }
+
+    def shown(self, file: Path) -> str:
+        """``file`` as below the folder the studio was given that holds it."""
+        folder = next((f for f in self.folders if file.is_relative_to(f)), None)
+        return str(file.relative_to(folder.parent) if folder else file)
 
     def edit(self, chart: str, seen: str, level: str, request: dict[str, Any]) -> str:
         """Apply one edit to the chart's file, made on version ``seen`` of it, at the level
@@ -144,7 +149,7 @@ def operation(place: list[str], request: dict[str, Any]) -> Callable:
         where, name = inside(request["name"])
 
         def add(unit):
-            unit, imported = edits.with_import(unit, request["chart"])
+            unit, imported = edits.with_import(unit, request["imports"])
             return edits.at(where, edits.add_state(name, imported))(unit)
 
         return add

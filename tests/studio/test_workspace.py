@@ -42,7 +42,7 @@ def test_an_edit_is_written_checked_and_drawn(models: Path) -> None:
     assert state["findings"] == [] and state["layer"] == "task"
     assert {"din_rail.skills.Retreat", PLUG} <= {p["name"] for p in state["palette"]}
     assert "din_rail.actions.Lift" not in {p["name"] for p in state["palette"]}
-    request = {"op": "add-state", "name": "Away", "chart": "din_rail.skills.Retreat"}
+    request = {"op": "add-state", "name": "Away", "imports": "din_rail.skills.Retreat"}
     new = studio.edit(AHEAD, state["version"], AHEAD, request)
     assert new != state["version"]
     text = file_of(models, AHEAD).read_text()

@@ -67,11 +67,9 @@ function select(g) {
     const kind = g.classList.contains("edge") ? "edge" : g.classList.contains("node") ? "node"
       : g.classList.contains("graph") ? "frame" : "region";
     selected = { element: g.dataset.element, path: g.dataset.path, kind };
-    if (kind === "node" && g.classList.contains("state")) {
+    if (kind === "node" && !selected.element.includes("#")) {  // a state, condition or pseudostate
       if (ends.source && !ends.target) ends.target = selected.element;
       else ends = { source: selected.element, target: null };
-    } else if (kind === "node") {
-      ends = { source: selected.element, target: null };
     }
   }
   $("selected").textContent = selected ? `${selected.kind} ${selected.element || diagram.view}` : "nothing";
@@ -92,8 +90,9 @@ async function refreshSide() {
   const chart = viewChart();
   const state = states.get(chart) || await loadState(chart);
   if (!state) return;
-  const palette = $("palette");
+  const palette = $("palette"), chosen = palette.value;
   palette.replaceChildren(...state.palette.map(p => new Option(`${p.name} (${p.layer || "plain"})`, p.name)));
+  if (state.palette.some(p => p.name === chosen)) palette.value = chosen;
   const regions = [...$("diagram").querySelectorAll("g.cluster.region")].map(g => g.dataset.element);
   $("region-choice").hidden = !regions.length;
   $("region").replaceChildren(...regions.map(r => new Option(r, r)));
@@ -140,16 +139,15 @@ async function edit(request, done) {
   const body = { chart, version: states.get(chart)?.version, level: diagram.key, ...request };
   const answer = await api("edit", {}, body);
   const result = await answer.json();
-  if (answer.status === 409) {
-    say(`refused: ${result.error}; reloaded what is on disk`, true);
-  } else if (!answer.ok) {
+  if (!answer.ok && answer.status !== 409) {
     say(`refused: ${result.error}`, true);
     return;
-  } else {
-    say(done);
   }
   ends = { source: null, target: null };
-  await load(root, true);
+  $("stimulus").value = "";
+  await load(root, true);  // what is on disk now, edited or changed by someone else
+  if (answer.ok) say(done);
+  else say(`refused: ${result.error}; reloaded what is on disk`, true);
 }
 
 function region() {
@@ -170,7 +168,7 @@ function wire() {
   });
   $("add-state").addEventListener("click", () => {
     const name = $("name").value.trim() || uniqueName($("palette").value.split(".").pop());
-    edit({ op: "add-state", name: region() + name, chart: $("palette").value }, `added ${name}`);
+    edit({ op: "add-state", name: region() + name, imports: $("palette").value }, `added ${name}`);
   });
   $("add-transition").addEventListener("click", () => {
     const stimulus = $("stimulus").value.trim();

@@ -1,0 +1,196 @@
+"""``lightrocks studio`` in headless chromium: a task's diagram edited by clicks (a state moved
+along the chain, a state added from the palette, a transition, a deletion), the findings of
+check shown on the diagram, a file changed on disk reloaded; and what the server refuses.
+
+The screenshots of docs/studio.md are taken here: set $STUDIO_ARTIFACTS to a folder to keep
+them.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+from monitor.test_monitor_page import WAIT
+
+pytest.importorskip("starlette", reason="the studio needs the 'monitor' extra")
+pytest.importorskip("selenium", reason="the browser tests need selenium (the 'dev' extra)")
+
+ROOT = Path(__file__).resolve().parents[2]
+AHEAD = "din_rail_ahead.tasks.AssembleRailAhead"
+
+
+@pytest.fixture
+def studio(tmp_path: Path, tmp_path_factory):
+    """``lightrocks studio`` on a copy of the examples: (url, the copy's folder)."""
+    models = shutil.copytree(ROOT / "examples", tmp_path / "examples")
+    err = tmp_path / "stderr.txt"
+    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "cache")}
+    command = [sys.executable, "-m", "lightrocks.app.cli", "studio", str(models)]
+    with err.open("w") as stderr:
+        process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=stderr)
+    url = ""
+    while not url and process.poll() is None:
+        time.sleep(0.1)
+        lines = err.read_text().splitlines()
+        url = next((s.removeprefix("studio: ") for s in lines if s.startswith("studio: ")), "")
+    assert url, f"the studio printed no URL: {err.read_text()}"
+    yield url, models
+    process.kill()
+    process.wait()
+
+
+class Studio:
+    """The studio's page as a user sees it."""
+
+    def __init__(self, browser, url: str, models: Path) -> None:
+        from selenium.common.exceptions import StaleElementReferenceException
+        from selenium.webdriver.support.ui import WebDriverWait
+
+        self.browser = browser
+        self.models = models
+        self.wait = WebDriverWait(
+            browser, WAIT, ignored_exceptions=[StaleElementReferenceException]
+        )
+        browser.get(f"{url}&chart={AHEAD}")
+        self.until(lambda: self.element("AssembleRailAhead/PlugTerminal3") is not None)
+
+    def until(self, condition) -> None:
+        self.wait.until(lambda _: condition())
+
+    def element(self, path: str):
+        for g in self.browser.find_elements("css selector", "#diagram [data-path]"):
+            if g.get_attribute("data-path") == path:
+                return g
+        return None
+
+    def click(self, path: str, kind: str = "click") -> None:
+        self.until(lambda: self.element(path) is not None)
+        self.browser.execute_script(
+            "arguments[0].dispatchEvent(new MouseEvent(arguments[1], {bubbles: true}))",
+            self.element(path),
+            kind,
+        )
+
+    def press(self, button: str) -> None:
+        self.browser.find_element("id", button).click()
+
+    def text(self, id: str) -> str:
+        return self.browser.find_element("id", id).text
+
+    def file(self, chart: str = AHEAD) -> str:
+        return self.models.joinpath(*chart.split(".")).with_suffix(".lr").read_text()
+
+    def screenshot(self, path: Path) -> None:
+        self.browser.save_screenshot(str(path))
+        artifacts = os.environ.get("STUDIO_ARTIFACTS")
+        if artifacts:
+            Path(artifacts).mkdir(parents=True, exist_ok=True)
+            shutil.copy(path, Path(artifacts) / path.name)
+
+
+def test_a_task_is_edited_on_its_diagram(studio, browser, tmp_path: Path) -> None:
+    from selenium.webdriver.support.ui import Select
+
+    page = Studio(browser, *studio)
+    page.screenshot(tmp_path / "studio.png")
+
+    page.click("AssembleRailAhead/PlugTerminal3")
+    page.press("earlier")
+    page.until(lambda: page.text("message") == "moved PlugTerminal3 earlier")
+    assert "PlugTerminal1 -> PlugTerminal3 plugged;" in page.file()
+    assert "PlugTerminal3 -> PlugTerminal2 plugged;\n  PlugTerminal2 -> assembled" in page.file()
+
+    Select(browser.find_element("id", "palette")).select_by_value("din_rail.skills.Retreat")
+    browser.find_element("id", "name").clear()
+    browser.find_element("id", "name").send_keys("Away")
+    page.press("add-state")
+    page.until(lambda: page.text("message") == "added Away")
+    assert '<<import="Retreat">> state Away;' in page.file()
+    assert "import din_rail.skills.Retreat;" in page.file()
+
+    page.click("AssembleRailAhead/Away")
+    page.click("AssembleRailAhead/failed")
+    page.until(lambda: page.text("ends") == "from Away to failed")
+    browser.find_element("id", "stimulus").send_keys("retreated")
+    page.press("add-transition")
+    page.until(lambda: page.text("message") == "added Away -> failed retreated")
+    assert "Away -> failed retreated;" in page.file()
+
+    page.until(lambda: "LR0207" in page.text("findings"))  # nothing leads to Away
+    away = page.element("AssembleRailAhead/Away")
+    assert {"error", "warning"} & set(away.get_attribute("class").split())  # marked
+    page.click("AssembleRailAhead/PlugTerminal1")  # select something else, then the finding
+    next(
+        item
+        for item in browser.find_elements("css selector", "#findings li")
+        if "LR0207" in item.text
+    ).click()
+    page.until(lambda: "selected" in page.element("AssembleRailAhead/Away").get_attribute("class"))
+    page.screenshot(tmp_path / "studio-findings.png")
+
+    page.press("delete")
+    page.until(lambda: page.text("message") == "deleted Away")
+    assert "Away" not in page.file()
+    assert page.text("findings") == "none"
+
+    page.click("AssembleRailAhead/PlugTerminal2", "dblclick")
+    page.until(lambda: page.element("AssembleRailAhead/PlugTerminal2/PressOn") is not None)
+    assert page.text("crumbs").startswith("AssembleRailAhead › PlugTerminal2")
+    page.screenshot(tmp_path / "studio-drilled.png")
+
+
+def test_a_file_changed_on_disk_is_reloaded(studio, browser) -> None:
+    page = Studio(browser, *studio)
+    path = page.models / "din_rail_ahead" / "tasks" / "AssembleRailAhead.lr"
+    path.write_text(path.read_text().replace("  PlugTerminal3 -> failed failed;\n", ""))
+    page.until(lambda: page.text("message").startswith("reloaded:"))
+    page.until(
+        lambda: page.element("AssembleRailAhead/PlugTerminal3->AssembleRailAhead/failed") is None
+    )
+
+
+def request(
+    url: str, path: str, body: dict | None = None, chart: str = "", **headers: str
+) -> tuple[int, str]:
+    """A request of the page's kind to the studio at ``url`` (which carries the token)."""
+    base, _, query = url.partition("?")
+    query += f"&chart={chart}" if chart else ""
+    data = json.dumps(body).encode() if body is not None else None
+    call = urllib.request.Request(f"{base.rstrip('/')}/{path}?{query}", data, headers)
+    try:
+        with urllib.request.urlopen(call, timeout=60) as answer:
+            return answer.status, answer.read().decode()
+    except urllib.error.HTTPError as error:
+        return error.code, error.read().decode()
+
+
+def test_stale_edits_strangers_and_other_sites_are_refused(studio) -> None:
+    url, models = studio
+    path = models / "din_rail_ahead" / "tasks" / "AssembleRailAhead.lr"
+    status, state = request(url, "state", chart=AHEAD)
+    assert status == 200
+    old = json.loads(state)["version"]
+    path.write_text(path.read_text().replace("  PlugTerminal3 -> failed failed;\n", ""))
+    changed = path.read_text()
+    move = {"chart": AHEAD, "version": old, "level": AHEAD, "op": "move"}
+    status, answer = request(url, "edit", {**move, "state": "PlugTerminal3", "steps": -1})
+    assert status == 409 and "changed on disk" in answer
+    assert path.read_text() == changed
+
+    base = url.split("?")[0]
+    assert request(base + "?token=wrong", "charts")[0] == 403
+    port = base.rstrip("/").rpartition(":")[2]
+    assert request(url, "charts", Host=f"rebound.example:{port}")[0] == 403
+    fresh = json.loads(request(url, "state", chart=AHEAD)[1])["version"]
+    other = {**move, "version": fresh, "state": "PlugTerminal3", "steps": -1}
+    assert request(url, "edit", other, Origin="http://rebound.example")[0] == 403
+    assert path.read_text() == changed
