@@ -1,9 +1,12 @@
 """The studio's web server: the page, a chart's diagram and state, and edits; on the
-monitor's stack (starlette on uvicorn), on the loopback interface only.
+monitor's stack (starlette on uvicorn) and behind the monitor's guard, on the loopback
+interface only.
 
-Every request carries the token printed with the URL. The server writes model files, so it
-also refuses requests for another host name than the one it listens on (a page of another
-site that rebinds its name to this machine) and edits whose Origin is another site.
+The token printed with the URL is set as a strict cookie by the page's first load; every
+other request carries it. The guard also refuses requests that name another host than the
+one served (a page of another site that rebinds its name to this machine) and requests from
+another site's page, and answers with the monitor's content security policy (see
+:mod:`lightrocks.app.monitor.guard`); this server writes model files.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ from importlib.resources import files
 from typing import Any
 
 from lightrocks.app.errors import ModelError
+from lightrocks.app.monitor.guard import Guard, Guarded
 from lightrocks.app.studio.edits import EditError
 from lightrocks.app.studio.workspace import Conflict, Studio
 from lightrocks.metamodel.grammar import SyntaxProblem
@@ -34,35 +38,28 @@ class StudioServer:
     def __init__(self, studio: Studio) -> None:
         self.studio = studio
         self.token = secrets.token_urlsafe(16)
-        self.port = 0
 
-    def app(self) -> Any:
+    def app(self, guard: Guard) -> Any:
         from starlette.applications import Starlette
         from starlette.requests import Request
         from starlette.responses import HTMLResponse, JSONResponse, Response
         from starlette.routing import Route
 
-        def refused(request: Request) -> Response | None:
-            given = request.query_params.get("token", "")
-            if not secrets.compare_digest(given.encode(), self.token.encode()):
-                return Response("a valid token is needed", status_code=403)
-            hosts = {f"{HOST}:{self.port}", f"localhost:{self.port}"}
-            if request.headers.get("host", "") not in hosts:
-                return Response("unknown host", status_code=403)
-            origin = request.headers.get("origin")
-            if origin is not None and origin not in {f"http://{h}" for h in hosts}:
-                return Response("edits come from the studio's page only", status_code=403)
-            return None
-
         def guarded(handler: Any) -> Any:
             async def serve(request: Request) -> Response:
-                return refused(request) or await handler(request)
+                port = request.scope["server"][1]
+                if not guard.authorised(request.cookies, request.query_params, port):
+                    return Response("a valid token is needed", status_code=403)
+                return await handler(request)
 
             return serve
 
         async def index(request: Request) -> Response:
+            """The page; its first load, with the token in the URL, sets the cookie that the
+            page's later requests carry."""
             page = files("lightrocks.app.studio.page").joinpath("index.html")
-            return HTMLResponse(page.read_text(encoding="utf-8"))
+            cookie = {"Set-Cookie": guard.cookie(request.scope["server"][1])}
+            return HTMLResponse(page.read_text(encoding="utf-8"), headers=cookie)
 
         def asset(name: str) -> Any:
             package, media = PAGES[name]
@@ -120,7 +117,9 @@ class StudioServer:
         """Start serving on a daemon thread; the URL with the token once it listens."""
         import uvicorn
 
-        config = uvicorn.Config(self.app(), host=HOST, port=port, log_level="warning")
+        guard = Guard(HOST, self.token)
+        app = Guarded(self.app(guard), guard)
+        config = uvicorn.Config(app, host=HOST, port=port, log_level="warning")
         server = uvicorn.Server(config)
         thread = threading.Thread(target=server.run, name="studio", daemon=True)
         thread.start()
@@ -128,5 +127,5 @@ class StudioServer:
             if not thread.is_alive():
                 raise OSError(f"the studio cannot listen on {HOST}:{port}")
             time.sleep(0.02)
-        self.port = server.servers[0].sockets[0].getsockname()[1]
-        return f"http://{HOST}:{self.port}/?token={self.token}"
+        bound = server.servers[0].sockets[0].getsockname()[1]
+        return f"http://{HOST}:{bound}/?token={self.token}"

@@ -1,8 +1,9 @@
 // The studio page: a chart's diagram with the findings of check on it, and edits of it.
 // Every edit names the version of the file it was made on; the server refuses it when the
 // file changed on disk since, and the page reloads what is on disk.
-const token = new URLSearchParams(location.search).get("token");
-const query = "?token=" + encodeURIComponent(token);
+// Its requests carry the cookie the page's first load set: the token leaves the address bar.
+const wanted = new URLSearchParams(location.search).get("chart");
+history.replaceState(null, "", location.pathname);
 const POLL = 1500;
 
 let root = "";               // the statechart chosen above
@@ -23,7 +24,7 @@ function say(text, refused = false) {
 }
 
 async function api(path, params = {}, body = null) {
-  const search = new URLSearchParams({ token, ...params });
+  const search = new URLSearchParams(params);
   const answer = await fetch(`${path}?${search}`, body ? {
     method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
   } : {});
@@ -201,7 +202,6 @@ async function poll() {
 async function start() {
   const charts = await (await api("charts")).json();
   $("chart").replaceChildren(...charts.map(c => new Option(`${c.name} (${c.layer || "plain"})`, c.name)));
-  const wanted = new URLSearchParams(location.search).get("chart");
   const first = charts.find(c => c.name === wanted) || charts.find(c => c.layer === "task") || charts[0];
   if (!first) { say("no statechart below the studio's folders", true); return; }
   $("chart").value = first.name;
