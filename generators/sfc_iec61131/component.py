@@ -221,7 +221,7 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
             parallel = self.parallels[id(region.parent)]
             end = self._end(region)
             branches.insert(0, Branch([parallel.abort], stop + self._exits(owners), end))
-        staying = self._branches(step, branches)
+        staying = self._branches(step, branches, self._timed(node))
         self._run(step, staying + self._ticks(step, node))
 
     def _invariant_branches(self, node: Node) -> list[Branch]:
@@ -234,10 +234,12 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
                 branches += self._react(owner, "error", exits, [negate(invariant)])
         return branches
 
-    def _events(self, node: Node, stop: list[str]) -> list[Branch]:
+    def _events(self, node: Node, stop: list[str], inner: str = "") -> list[Branch]:
         """Transitions on external events and time events: the innermost state first, its
         internal transitions before those leaving it, declaration order. From an orthogonal
-        state, an event fires only when no state inside it takes the event."""
+        state, an event fires only when no state inside it takes the event, and a time
+        event only when none inside it is due (``inner``)."""
+        waiting = [negate(inner)] if inner else []
         branches = []
         imported = node is None or node.info.imported is not None or self._orthogonal(node)
         for owner in self._owners(node):
@@ -252,8 +254,12 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
                 guard = self._guard(transition.guard)
                 statements = self._statements(transition.action or ())
                 stimulus = self._stimulus(owner, transition)
-                once = transition.delay is None
-                branches.append(Branch([*stimulus, guard], statements, None, taken_once=once))
+                timed = transition.delay is not None
+                if timed:  # its deadline is taken, whatever else took the scan
+                    statements.append(f"{self._timer(owner, transition).passed} := TRUE;")
+                condition = [*stimulus, *(waiting if timed else []), guard]
+                once = not timed or owner is not node  # around the leaf: once it rests
+                branches.append(Branch(condition, statements, None, taken_once=once))
             if owner is None:
                 break
             outcomes = {*(owner.info.outcomes or ()), *BUILTIN_OUTCOMES}  # never events
@@ -268,6 +274,8 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
                 condition = [*self._stimulus(owner, transition), guard]
                 if self._orthogonal(node) and transition.delay is None:
                     condition += self._untaken(node, transition.stimulus)
+                elif transition.delay is not None:
+                    condition += waiting
                 branches += self._fire(owner.parent, transition, exits, condition)
         return branches
 
@@ -298,8 +306,7 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
         """The condition of a transition's event: its event input, or the scan in which
         its time event falls due."""
         if transition.delay is not None:
-            timers = self.timers[id(owner) if owner else None]
-            timer = next(t for t in timers if t.transition is transition)
+            timer = self._timer(owner, transition)
             return [f"{timer.instance}.Q", f"NOT {timer.passed}"]
         event = self.events.get(transition.stimulus)
         if event is None:

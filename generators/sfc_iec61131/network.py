@@ -20,9 +20,10 @@ class Branch:
 
     A branch without target stays in its step (an internal transition); one on an event
     (``taken_once``) does not fire in the scan that enters its step, since the transition
-    that entered it has taken that event. A branch with ``following`` runs its statements in
-    a step of its own and goes on by those branches (a choice, whose guards read the effect
-    of the statements)."""
+    that entered it has taken that event; nor does a time event of a state around the
+    step, which follows the time events that entered it. A branch with ``following`` runs
+    its statements in a step of its own and goes on by those branches (a choice, whose
+    guards read the effect of the statements)."""
 
     condition: list[str]
     statements: list[str]
@@ -40,6 +41,8 @@ class Network:
         self.block = block
         self.names = names
         self.resting: dict[str, str] = {}  # step -> its flag "active in the scan before"
+        self.took: dict[str, str] = {}  # step -> which internal transition took the scan
+        self.ways: dict[str, list[list[str]]] = {}  # timed step -> its ways out, in order
 
     def _step(self, name: str, initial: bool = False) -> Step:
         step = Step(self.names.claim_macro(name), initial)
@@ -59,17 +62,20 @@ class Network:
         name = self.names.claim(f"{source}_to_{target}")
         self.block.transitions.append(Transition(name, source, target, condition or "TRUE"))
 
-    def _branches(self, source: str, branches: list[Branch]) -> list[str]:
+    def _branches(self, source: str, branches: list[Branch], timed: bool = False) -> list[str]:
         """Exclusive transitions from ``source``: each branch requires no earlier one to hold.
 
         Statements run in a step of their own between source and target, so that they
         finish before the target's entry and so that a postcondition reads their effect.
-        Branches that stay in ``source`` come back as ST lines for its N action."""
+        Branches that stay in ``source`` come back as ST lines for its N action; in a step
+        that runs timers (``timed``) each also records that it took the scan (:meth:`_took`)."""
         taken: list[str] = []
         covered: list[set[str]] = []
         staying: list[str] = []
         resting = ""
-        for branch in branches:
+        if timed:
+            self.ways[source] = [branch.condition for branch in branches]
+        for place, branch in enumerate(branches, 1):
             needs = {c for c in branch.condition if c and c != "TRUE"}
             if any(earlier <= needs for earlier in covered):
                 continue  # an earlier branch always wins: this one never fires
@@ -78,11 +84,12 @@ class Network:
             whole = conjunction([condition, *(negate(t) for t in taken)])
             taken.append(condition)
             if branch.target is None:
-                if branch.statements:
+                if branch.statements or timed:
                     if branch.taken_once:
                         resting = resting or self._resting(source)
                         whole = conjunction([condition, resting, *map(negate, taken[:-1])])
-                    indented = [f"  {line}" for line in branch.statements]
+                    took = [f"{self._took(source)} := {place};"] if timed else []
+                    indented = [f"  {line}" for line in [*branch.statements, *took]]
                     staying += [f"IF {whole} THEN", *indented, "END_IF;"]
                 continue
             if branch.following is not None:
@@ -133,7 +140,23 @@ class Network:
             self.resting[step] = flag
         return self.resting[step]
 
+    def _took(self, step: str) -> str:
+        """A DINT that tells which way out staying in ``step`` (an internal transition) took
+        this scan, by its place among the step's ways out (0: none): the ways out after it
+        did not have their turn, so a time event of theirs due in this scan stays due for
+        the next one, and fires after it, as at run time. The step's N action clears it
+        first (:meth:`_run`)."""
+        if step not in self.took:
+            flag = self.names.claim(f"{step}_took")
+            comment = "the internal transition that took this scan, by its place; 0 none"
+            self.block.locals.append(Variable(flag, "DINT", comment=comment))
+            self.took[step] = flag
+        return self.took[step]
+
     def _run(self, step: str, lines: list[str]) -> None:
-        """The N action of a resting step: ``lines``, then its flag, if it has one, raised."""
+        """The N action of a resting step: which internal transition took the scan cleared,
+        if it has one, ``lines``, then its resting flag, if it has one, raised."""
+        took = self.took.get(step)
         flag = self.resting.get(step)
-        self._body(step, "N", lines + ([f"{flag} := TRUE;"] if flag else []))
+        cleared = [f"{took} := 0;"] if took else []
+        self._body(step, "N", cleared + lines + ([f"{flag} := TRUE;"] if flag else []))

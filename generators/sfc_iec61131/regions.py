@@ -84,6 +84,9 @@ class OrthogonalRegions:
         whose entry statements run before its fork)."""
         parallel = self.parallels[id(node)]
         lines = [f"{parallel.abort} := FALSE;", f"{parallel.way} := 0;", f"{parallel.final} := 0;"]
+        due = self._inner_deadlines(node) if self._timed(node) else ""
+        inner = self._inner_flag(node) if due else ""
+        lines += [f"{inner} := FALSE;"] if inner else []
         lines += self._entry(node) if node else []
         targets = []
         regions = self._nested(node)
@@ -104,7 +107,7 @@ class OrthogonalRegions:
         )
         # the watch: what leaves the orthogonal state from outside its regions
         ended = " AND ".join(f"{end}.X" for end in parallel.ends)
-        outside = self._invariant_branches(node) + self._events(node, [])
+        outside = self._invariant_branches(node) + self._events(node, [], inner)
         before = len(self.block.transitions)
         staying = self._branches(
             parallel.watch,
@@ -117,8 +120,10 @@ class OrthogonalRegions:
                     for n, b in enumerate(outside, 2)
                 ),
             ],
+            self._timed(node),
         )  # fmt: skip
-        self._run(parallel.watch, staying + self._ticks(parallel.watch, node))
+        ticks = self._ticks(parallel.watch, node, inner)
+        self._run(parallel.watch, staying + ticks + ([f"{inner} := {due};"] if inner else []))
         # declared first, the watch reads the regions' step flags before any region moves:
         # MatIEC clears a step's flag as soon as one of its transitions fires
         added = self.block.transitions[before:]
@@ -147,3 +152,32 @@ class OrthogonalRegions:
                 ways.append(replace(b, condition=[f"{parallel.way} = {n}"],
                                     statements=exits + b.statements))  # fmt: skip
         self._branches(parallel.left, ways)
+
+    def _inner_flag(self, node: Node | None) -> str:
+        """A flag that a time event inside the regions of ``node`` was due and not yet taken
+        at the end of the scan before: the time events of the watch wait while it is set,
+        as at run time the innermost fire first. The watch's N action sets it last; it runs
+        after the N actions of the regions' leaves, which are declared before it, so it
+        reads the state the next scan starts from."""
+        where = "_".join(node.path) if node else self.component.name
+        flag = self.names.claim(f"{where}_inner")
+        comment = "a time event inside its regions is due: its own time events wait"
+        self.block.locals.append(Variable(flag, "BOOL", comment=comment))
+        return flag
+
+    def _inner_deadlines(self, node: Node | None) -> str:
+        """The condition that a time event inside the regions of ``node`` is due and not
+        yet taken: a state's timer counts while a leaf under it is active, and a region
+        between two leaves (in a step that runs a transition's statements) may be on its
+        way to one that takes a time event due at this instant."""
+        due = []
+        for region in self._nested(node):
+            leaves = [n for n in self._all(region.nested) if id(n) in self.leaves]
+            resting = [self.leaves[id(n)] for n in leaves] + [self._end(region)]
+            due.append(f"NOT ({' OR '.join(f'{step}.X' for step in resting)})")
+            for leaf in leaves:
+                timers = [t for owner in self._owners(leaf) for t in self.timers.get(id(owner), [])]
+                if timers:
+                    live = " OR ".join(f"({t.instance}.Q AND NOT {t.passed})" for t in timers)
+                    due.append(f"({self.leaves[id(leaf)]}.X AND ({live}))")
+        return " OR ".join(due)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from lightrocks.generators.sfc_iec61131.conditions import negate
 from lightrocks.generators.sfc_iec61131.expressions import literal, time_literal
 from lightrocks.generators.sfc_iec61131.hierarchy import Node
 from lightrocks.generators.sfc_iec61131.ir import Variable
@@ -56,19 +57,41 @@ class TimeEvents:
                 timer = Timer(transition, instance, passed, duration)
                 self.timers.setdefault(id(node) if node else None, []).append(timer)
 
-    def _ticks(self, step: str, node: Node) -> list[str]:
+    def _timer(
+        self, owner: Node | None, transition: ast.Transition | ast.InternalTransition
+    ) -> Timer:
+        """The timer of ``transition``, a time event of ``owner`` (None: the statechart)."""
+        timers = self.timers[id(owner) if owner else None]
+        return next(t for t in timers if t.transition is transition)
+
+    def _timed(self, node: Node | None) -> bool:
+        """Whether the leaf ``node`` (or the watch of an orthogonal state) runs timers."""
+        return any(self.timers.get(id(o) if o else None) for o in self._owners(node))
+
+    def _ticks(self, step: str, node: Node | None, inner: str = "") -> list[str]:
         """N-action lines of a leaf's ``step`` that run the timers of its state and the states
         around it: the flag reads the timer's output of the scan before, so the scan in which
-        the deadline shows is the one scan in which the time event fires. A transition leaving
-        a state around the leaf keeps its event one scan longer when the leaf was entered in
-        that scan: an inner transition due at the same deadline took it, and at run time the
-        outer event follows at the same instant."""
+        the deadline shows is the one scan in which the time event fires. A time event keeps
+        its deadline one scan longer when an earlier way out took that scan, as at run time,
+        where the later event follows at the same instant: a time event of a state around
+        the leaf when the leaf was entered in that scan (an inner transition took it), any
+        time event after an internal transition of the step that took it, and a time event
+        of the watch of orthogonal regions while one inside them is due (``inner``)."""
         lines = []
+        took = self.took.get(step)
         for owner in self._owners(node):
             for timer in self.timers.get(id(owner) if owner else None, []):
-                due = f"{timer.instance}.Q"
-                if owner is not node and isinstance(timer.transition, ast.Transition):
-                    due = f"({due} AND {self._resting(step)})"
+                parts = [f"{timer.instance}.Q"]
+                if owner is not node:
+                    parts.append(self._resting(step))
+                if took:  # held when a way out before its own took the scan
+                    ways = self.ways[step]
+                    place = next(
+                        (i for i, way in enumerate(ways, 1) if parts[0] in way), len(ways) + 1
+                    )
+                    parts.append(f"({took} = 0 OR {took} > {place})")
+                parts += [negate(inner)] if inner else []
+                due = parts[0] if len(parts) == 1 else f"({' AND '.join(parts)})"
                 lines += [f"{timer.passed} := {timer.passed} OR {due};",
                           f"{timer.instance}(IN := TRUE);"]  # fmt: skip
         return lines

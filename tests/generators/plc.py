@@ -182,7 +182,13 @@ def _tree(unit: Unit) -> list[tuple[str, str, Block]]:
 
 
 def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
-    """A C ``main`` that emulates the cell's devices and prints every step activation."""
+    """A C ``main`` that emulates the cell's devices and prints every step activation.
+
+    A script that lets time pass (``+500ms``) runs on a virtual clock, as the Python side
+    does: time stands still while the program reacts and advances one cycle at a time only
+    while a script item lets it pass and the program has rested for a few scans, so every
+    reaction to an event or a deadline happens at one instant of that clock. Other scripts
+    run on a clock that advances one cycle per scan."""
     tree = _tree(unit)
     cell = unit.configuration.upper()
     devices = {b.name: b for b in unit.devices}
@@ -248,6 +254,7 @@ def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
     event_inputs = {v.comment.removeprefix("event "): v.name for v in unit.program.inputs[1:]}
     inputs = list(event_inputs.values())
     kinds, waits = [], []  # per item: an event input's index, or -1 and the scans to wait
+    timed = any(item.startswith("+") for item in scenario.events)
     for item in scenario.events:
         if item.startswith("+"):
             kinds.append(-1)
@@ -275,17 +282,19 @@ def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
         "int main(void) {",
         f"  const int kinds[] = {{{', '.join(map(str, kinds or [0]))}}};",
         f"  const long waits[] = {{{', '.join(map(str, waits or [0]))}}};",
-        f"  int pending = {len(kinds)}, sent = 0, quiet = 0;",
+        f"  int pending = {len(kinds)}, sent = 0, quiet = 0, virtual_clock = {int(timed)};",
         "  long waiting = 0;",
         "  config_init__();",
         f"  {program}.{start}.value = 1;",
         f"  for (unsigned long cycle = 0; cycle < {max_cycles}; cycle++) {{",
         "    emulate();",
         *(f"    {program}.{name.upper()}.value = 0;" for name in inputs),
+        "    int tick = !virtual_clock;",
         "    if (sent < pending && (waiting > 0 || quiet > 5)) {",
         "      if (kinds[sent] < 0) {",
         "        if (waiting == 0) waiting = waits[sent];",
-        "        if (--waiting <= 0) { waiting = 0; sent++; quiet = 0; }",
+        "        if (virtual_clock && quiet > 5) { tick = 1; quiet = 0; }",
+        "        if (tick && --waiting <= 0) { waiting = 0; sent++; quiet = 0; }",
         "      } else {",
         *(
             f"        if (kinds[sent] == {index}) {program}.{name.upper()}.value = 1;"
@@ -295,9 +304,11 @@ def driver_source(unit: Unit, scenario: Scenario, max_cycles: int) -> str:
         "      }",
         "    }",
         "    config_run__(cycle);",
-        f"    __CURRENT_TIME.tv_nsec += {CYCLE_MS * 1_000_000};",
-        "    if (__CURRENT_TIME.tv_nsec >= 1000000000) {",
-        "      __CURRENT_TIME.tv_sec++; __CURRENT_TIME.tv_nsec -= 1000000000; }",
+        "    if (tick) {",
+        f"      __CURRENT_TIME.tv_nsec += {CYCLE_MS * 1_000_000};",
+        "      if (__CURRENT_TIME.tv_nsec >= 1000000000) {",
+        "        __CURRENT_TIME.tv_sec++; __CURRENT_TIME.tv_nsec -= 1000000000; }",
+        "    }",
         "    quiet = report(cycle) ? 0 : quiet + 1;",
         f"    if (sent == pending && {tree[0][0]}.{unit.blocks[-1].outcomes['done'].upper()}.value",
         "        && quiet > 5) break;",

@@ -1,7 +1,9 @@
 """Models at the edges of the SFC target, judged by MatIEC with its defaults and with Beremiz's
 options: vector literals passed to commands and skills and compared, strings holding comment
-delimiters, a chart name as long as a file name may be, and Integer durations of time events.
-Each compiles and links; those with a script also step like Python."""
+delimiters, a chart name as long as a file name may be, Integer durations of time events, and
+three time events of nested states due at one instant though different stimuli entered their
+states (the innermost first, none lost). Each compiles and links; those with a script also
+step like Python."""
 
 from __future__ import annotations
 
@@ -50,6 +52,28 @@ statechart Paced {
 }
 """
 
+TIES = """package e;
+
+statechart Tie {
+  parameters {
+    Integer hits = 0;
+  }
+
+  initial state O {
+    internal after(750 ms) / { hits = hits * 10 + 2; };
+    initial state A;
+    state I;
+    state J;
+    A -> I a;
+    I -> J after(500 ms) / { hits = hits * 10 + 1; };
+  }
+  state X;
+  final state Z;
+  O -> X after(750 ms);
+  X -> Z [hits == 12] b;
+}
+"""
+
 PLAIN = """package e;
 
 statechart {name} {{
@@ -94,16 +118,18 @@ def _cases(folder: Path) -> dict[str, tuple[Path, Scenario | None]]:
     sensors = {"arm.reached": True}
     strings = _model(folder, "Quoted", STRINGS)
     durations = _model(folder, "Paced", DURATIONS)
+    ties = _model(folder, "Tie", TIES)
     return {
         "vectors": (vectors, Scenario("vectors", vectors, sensors=sensors)),
         "strings": (strings, Scenario("strings", strings, events=["go", "go"])),
         "long name": (_model(folder, LONG, PLAIN.format(name=LONG)), None),
         "durations": (durations, Scenario("durations", durations, events=["+3000ms"])),
+        "ties": (ties, Scenario("ties", ties, events=["+250ms", "a", "+500ms", "b", "+1s"])),
     }
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("case", ["vectors", "strings", "long name", "durations"])
+@pytest.mark.parametrize("case", ["vectors", "strings", "long name", "durations", "ties"])
 def test_edge_models_compile_link_and_step(home: Path, tmp_path: Path, tally, case: str) -> None:
     model, scenario = _cases(tmp_path / "models")[case]
     failure = _judge(home, tmp_path / "out", model, tmp_path / "models", scenario)
