@@ -8,6 +8,7 @@ from collections.abc import Iterator
 
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.behaviour.conditions import Conditions, Finding
+from lightrocks.languages.lightrocks.behaviour.judge import SOLVER_TURN
 from lightrocks.languages.lightrocks.behaviour.parameters import ParameterValues
 from lightrocks.languages.lightrocks.behaviour.plausibility import Plausibility, degree_findings
 from lightrocks.metamodel import ast
@@ -17,6 +18,11 @@ from lightrocks.workbench.diagnostics import Severity
 
 def condition_findings(context: object) -> dict[str, list[Finding]]:
     """Every finding on conditions of this run, by code, computed once."""
+    with SOLVER_TURN:
+        return _condition_findings(context)
+
+
+def _condition_findings(context: object) -> dict[str, list[Finding]]:
     cached = context.cache.get("behaviour-conditions")
     if cached is not None:
         return cached

@@ -6,6 +6,7 @@ solver cannot answer in time counts as "may hold", so that no finding rests on a
 
 from __future__ import annotations
 
+import threading
 from fractions import Fraction
 
 import z3
@@ -15,6 +16,9 @@ from lightrocks.languages.lightrocks.behaviour.variables import Variable
 from lightrocks.metamodel.units import lookup
 
 TIMEOUT_MS = 500
+SOLVER_TURN = threading.RLock()
+"""z3's terms live in one global context that is not thread-safe: checks running in several
+threads (a thread pool, a server) build and solve their terms one at a time."""
 MAX_ANSWERS = 50_000
 _ANSWERS: dict[tuple[int, ...], tuple[z3.ModelRef | bool, list[z3.BoolRef]]] = {}
 

@@ -16,6 +16,7 @@ from lightrocks.languages.lightrocks.behaviour.checker import (
     refute,
 )
 from lightrocks.languages.lightrocks.behaviour.flow import Flow
+from lightrocks.languages.lightrocks.behaviour.judge import SOLVER_TURN
 from lightrocks.languages.lightrocks.behaviour.liveness import Liveness
 from lightrocks.workbench.check import check
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
@@ -53,7 +54,14 @@ def verify(
     result = Verification(list(context.diagnostics.items), strict=strict)
     if context.diagnostics.has_errors:
         return result
-    a = analysis(context)
+    with SOLVER_TURN:
+        _model_check(analysis(context), result)
+    result.diagnostics.sort()
+    return result
+
+
+def _model_check(a: object, result: Verification) -> None:
+    """The refuted properties of every task, skill and plain statechart with an end."""
     liveness = Liveness()
     seen: set[tuple[str, object]] = set()
     for component in sorted(a.models.components, key=lambda c: c.qualified_name):
@@ -86,5 +94,3 @@ def verify(
             result.diagnostics.append(diagnostic)
             if refutation.counterexample is not None:
                 result.counterexamples.append((diagnostic, refutation.counterexample))
-    result.diagnostics.sort()
-    return result
