@@ -10,6 +10,8 @@ and an ``.svg`` that is drawn even where Graphviz fails (see ``drawing``).
 from __future__ import annotations
 
 import json
+import os
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from lightrocks.generators.graphviz.drawing import draw, level_template
@@ -65,17 +67,26 @@ class DotGenerator:
         return files
 
 
-def _levels(components, stems: dict[str, str], request: GenerationRequest) -> dict:
-    """Per selected chart: every level it shows, drawn, and the index of them."""
+def _levels(
+    components: list[Component], stems: dict[str, str], request: GenerationRequest
+) -> dict[str, str | bytes]:
+    """Per selected chart: every level it shows, drawn, and the index of them. A level that
+    several charts show is drawn once; levels are drawn side by side, each waiting on a
+    renderer process of its own."""
     template = level_template(request.templates)
+    charts = {c.qualified_name: all_levels(c) for c in components}
+    unique = {key: level for levels in charts.values() for key, level in levels.items()}
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 2) as pool:
+        drawn = pool.map(lambda level: draw(level, template), unique.values())
+        drawings = dict(zip(unique, drawn, strict=True))
     files: dict[str, str | bytes] = {}
     owners: dict[str, Component | None] = {}
     for component in components:
         stem = stems[component.qualified_name]
         index = []
-        for key, level in all_levels(component).items():
+        for key, level in charts[component.qualified_name].items():
             name = "/".join(shortened(part) for part in key.split("/"))
-            drawing = draw(level, template)
+            drawing = drawings[key]
             files[f"{stem}/{name}.dot"] = drawing.dot
             files[f"{stem}/{name}.svg"] = drawing.svg
             owners.update({f"{stem}/{name}.dot": component, f"{stem}/{name}.svg": component})
