@@ -87,8 +87,7 @@ def chart_levels(component: Component) -> list[Level]:
     layer = component.layer or ""
     if is_action(component):
         return [_action(component, title, layer)]
-    builder = _Builder(component.qualified_name)
-    return builder.levels(component.region, component.qualified_name, title, layer)
+    return _levels(component.region, component.qualified_name, title, layer)
 
 
 def _action(component: Component, title: str, layer: str) -> Level:
@@ -126,74 +125,69 @@ def is_composite(info: StateInfo) -> bool:
     return region is not None and bool(region.states or region.pseudostates)
 
 
-class _Builder:
-    """Walks one statechart's regions; each composite state becomes a level of its own."""
-
-    def __init__(self, chart: str) -> None:
-        self.chart = chart
-
-    def levels(self, region: Region, key: str, title: str, layer: str) -> list[Level]:
-        level = Level(key, title, layer)
-        level.notes = [line for a in region.actions for line in action_lines(a)]
-        level.notes += [transition_label(t) for t in region.internal]
-        self._conditions(level, region, "", "")
-        nested: list[Level] = []
-        if region.orthogonal:
-            for name, info in region.states.items():
-                if info.region is None:
-                    continue
-                level.regions.append(name)
-                nested += self._region(level, info.region, key, f"{name}/", name)
-        else:
-            nested += self._region(level, region, key, "", "")
-        level.edges = merged(level.edges)
-        return [level, *nested]
-
-    def _conditions(self, level: Level, region: Region, prefix: str, compartment: str) -> None:
-        for condition in region.conditions.values():
-            kind = condition.kind
-            text = _condition(condition) if kind == "start" else condition.name
-            node = Node(prefix + condition.name, [], kind, compartment, xlabel=text)
-            level.nodes.append(node)
-
-    def _region(
-        self, level: Level, region: Region, key: str, prefix: str, compartment: str
-    ) -> list[Level]:
-        """Draw ``region`` into ``level`` with ids under ``prefix``; the levels of its
-        composite states."""
-        nested: list[Level] = []
-        if compartment:
-            self._conditions(level, region, prefix, compartment)
+def _levels(region: Region, key: str, title: str, layer: str) -> list[Level]:
+    """The level of ``region`` and one per composite state inside it."""
+    level = Level(key, title, layer)
+    level.notes = [line for a in region.actions for line in action_lines(a)]
+    level.notes += [transition_label(t) for t in region.internal]
+    _conditions(level, region, "", "")
+    nested: list[Level] = []
+    if region.orthogonal:
         for name, info in region.states.items():
-            node_id = prefix + name
-            drill = ""
-            if info.imported is not None:
-                drill = info.imported.qualified_name
-            elif is_composite(info):
-                drill = f"{key}/{node_id}"
-                title = heading(info.state.stereotypes, name)
-                nested += self.levels(info.region, drill, title, "")
-            lines = state_lines(info)
-            level.nodes.append(Node(node_id, lines, "state", compartment, drill))
-            if info.state.is_initial:
-                level.nodes.append(Node(f"{node_id}#initial", [], "initial", compartment))
-                level.edges.append(Edge(f"{node_id}#initial", node_id, kind="marker"))
-            if info.state.is_final:
-                level.nodes.append(Node(f"{node_id}#final", [], "final", compartment))
-                level.edges.append(Edge(node_id, f"{node_id}#final", kind="marker"))
-        for name, pseudostate in region.pseudostates.items():
-            kind = "choice" if pseudostate.kind == "choice" else "history"
-            text = {"history": "H", "deep history": "H*"}.get(pseudostate.kind, "")
-            level.nodes.append(Node(prefix + name, [text] if text else [], kind, compartment))
-        known = {n.id for n in level.nodes}
-        for transition in region.transitions:
-            source = _resolve(transition.source, prefix, known)
-            target = _resolve(transition.target, prefix, known)
-            if not source or not target:
+            if info.region is None:
                 continue
-            head = _history(region, transition)
-            level.edges.append(Edge(source, target, transition_label(transition), head=head))
-        return nested
+            level.regions.append(name)
+            nested += _region(level, info.region, key, f"{name}/", name)
+    else:
+        nested += _region(level, region, key, "", "")
+    level.edges = merged(level.edges)
+    return [level, *nested]
+
+
+def _conditions(level: Level, region: Region, prefix: str, compartment: str) -> None:
+    for condition in region.conditions.values():
+        kind = condition.kind
+        text = _condition(condition) if kind == "start" else condition.name
+        node = Node(prefix + condition.name, [], kind, compartment, xlabel=text)
+        level.nodes.append(node)
+
+
+def _region(level: Level, region: Region, key: str, prefix: str, compartment: str) -> list[Level]:
+    """Draw ``region`` into ``level`` with ids under ``prefix``; the levels of its
+    composite states."""
+    nested: list[Level] = []
+    if compartment:
+        _conditions(level, region, prefix, compartment)
+    for name, info in region.states.items():
+        node_id = prefix + name
+        drill = ""
+        if info.imported is not None:
+            drill = info.imported.qualified_name
+        elif is_composite(info):
+            drill = f"{key}/{node_id}"
+            title = heading(info.state.stereotypes, name)
+            nested += _levels(info.region, drill, title, "")
+        lines = state_lines(info)
+        level.nodes.append(Node(node_id, lines, "state", compartment, drill))
+        if info.state.is_initial:
+            level.nodes.append(Node(f"{node_id}#initial", [], "initial", compartment))
+            level.edges.append(Edge(f"{node_id}#initial", node_id, kind="marker"))
+        if info.state.is_final:
+            level.nodes.append(Node(f"{node_id}#final", [], "final", compartment))
+            level.edges.append(Edge(node_id, f"{node_id}#final", kind="marker"))
+    for name, pseudostate in region.pseudostates.items():
+        kind = "choice" if pseudostate.kind == "choice" else "history"
+        text = {"history": "H", "deep history": "H*"}.get(pseudostate.kind, "")
+        level.nodes.append(Node(prefix + name, [text] if text else [], kind, compartment))
+    known = {n.id for n in level.nodes}
+    for transition in region.transitions:
+        source = _resolve(transition.source, prefix, known)
+        target = _resolve(transition.target, prefix, known)
+        if not source or not target:
+            continue
+        head = _history(region, transition)
+        level.edges.append(Edge(source, target, transition_label(transition), head=head))
+    return nested
 
 
 def merged(edges: list[Edge]) -> list[Edge]:
