@@ -19,7 +19,6 @@ from typing import Any
 
 from lightrocks.app.errors import ModelError
 from lightrocks.app.monitor.guard import Guard, Guarded
-from lightrocks.app.studio.edits import EditError
 from lightrocks.app.studio.workspace import Conflict, Studio
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.generators import GenerationError
@@ -98,7 +97,7 @@ class StudioServer:
                 return JSONResponse({"error": str(error)}, status_code=409)
             except KeyError as error:
                 return JSONResponse({"error": f"missing {error}"}, status_code=422)
-            except (EditError, SyntaxProblem, ValueError) as error:
+            except (SyntaxProblem, ValueError) as error:  # an EditError among them
                 return JSONResponse({"error": str(error)}, status_code=422)
             return JSONResponse(self.studio.state(chart))
 

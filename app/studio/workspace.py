@@ -21,6 +21,7 @@ from lightrocks.app.studio import edits
 from lightrocks.app.studio.findings import placed, places
 from lightrocks.generators.selection import selected
 from lightrocks.languages.lightrocks.model import Component, Region
+from lightrocks.metamodel import ast
 from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.files import write_atomic
 from lightrocks.workbench.generators import GenerationRequest, load_generator, run_generator
@@ -148,7 +149,7 @@ def operation(place: list[str], request: dict[str, Any]) -> Callable:
     if kind == "add-state":
         where, name = inside(request["name"])
 
-        def add(unit):
+        def add(unit: ast.StatechartUnit) -> ast.StatechartUnit:
             unit, imported = edits.with_import(unit, request["imports"])
             return edits.at(where, edits.add_state(name, imported))(unit)
 
