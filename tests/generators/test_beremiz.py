@@ -1,6 +1,7 @@
-"""The PLCopen target judged by Beremiz: every generated project loads in Beremiz's PLCopen
-loader, its PLCopen-to-IEC generator turns it into IEC text without a finding, and its
-headless build compiles that text with MatIEC (Beremiz's options) and gcc.
+"""The PLCopen target judged by Beremiz: every generated project (examples, plant models,
+models at the target's edges) loads in Beremiz's PLCopen loader, its PLCopen-to-IEC
+generator turns it into IEC text without a finding, and its headless build compiles that
+text with MatIEC (Beremiz's options) and gcc.
 
 Needs Beremiz (``make judges``, see ``beremiz.py``): skipped with the reason where absent,
 failed in CI.
@@ -16,6 +17,7 @@ import pytest
 from beremiz import Beremiz, beremiz, build, load
 from generation import EXAMPLES, ROOT
 from judges import missing
+from test_matiec_findings import _cases
 
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import GenerationRequest, load_generator
@@ -36,10 +38,13 @@ def judge() -> Beremiz:
 
 @pytest.fixture(scope="module")
 def projects(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
-    """Every PLCopen project generated from the examples and the plant models."""
+    """Every PLCopen project generated from the examples, the plant models and the models at
+    the target's edges (test_matiec_findings)."""
     out = tmp_path_factory.mktemp("plcopen")
+    edges = tmp_path_factory.mktemp("edges")
+    _cases(edges)
     written = []
-    for name, (paths, search) in SOURCES.items():
+    for name, (paths, search) in {**SOURCES, "edges": ([edges], [edges])}.items():
         models = sorted(p for folder in paths for p in folder.rglob("*.lr"))
         context = check(models, search)
         assert not context.diagnostics.has_errors, context.diagnostics.items
