@@ -50,7 +50,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Exception as error:
         if os.environ.get("LIGHTROCKS_DEBUG"):
             raise
-        _complain(f"internal error: {error!r} (set LIGHTROCKS_DEBUG=1 for the traceback)")
+        detail = repr(error) if len(repr(error)) <= 300 else repr(error)[:300] + "…"
+        _complain(f"internal error: {detail} (set LIGHTROCKS_DEBUG=1 for the traceback)")
         return EXIT_FINDINGS
 
 

@@ -160,19 +160,43 @@ def _describe(error: TextXSyntaxError) -> str:
 
 
 def _rule_texts(rule: object) -> tuple[str, ...]:
-    """How an expected rule is named in a message; a lookahead on a set of characters (such
-    as ``SuffixStart``, which spares trying each suffix) names each character."""
+    """How an expected rule is named in a message, in the words a user may type: a keyword
+    or an operator as written, a rule by what it stands for (``a name``), a lookahead on a
+    set of characters (such as ``SuffixStart``, which spares trying each suffix) by each
+    character."""
     text = getattr(rule, "to_match", None)
     if isinstance(text, str) and not getattr(rule, "regex", None):
         return (f"'{text}'",)
     name = getattr(rule, "rule_name", "") or getattr(rule, "name", "")
     if name in _FRIENDLY:
         return (_FRIENDLY[name],)
+    if isinstance(text, str) and _KEYWORD.fullmatch(text):  # textX matches keywords whole
+        return (f"'{text}'",)
+    literal = _literal(text) if isinstance(text, str) else None
+    if literal:  # an operator such as '=' that must not be followed by another '='
+        return (f"'{literal}'",)
     characters = _CHARACTER_SET.fullmatch(text) if isinstance(text, str) else None
     if characters:
         return tuple(f"'{c}'" for c in re.sub(r"\\(.)", r"\1", characters[1]))
     return (name or str(rule),)
 
+
+def _literal(pattern: str) -> str | None:
+    """The plain text a regular expression matches once its lookaheads and word boundaries
+    are left out (``=(?!=)`` -> ``=``); None for a pattern that matches more than one text."""
+    core = _LOOKAROUND.sub("", pattern)
+    plain = re.sub(r"\\(.)", r"\1", core)
+    if not plain or any(c in ".^$*+?{}[]|()\\" for c in re.sub(r"\\.", "", core)):
+        return None
+    return plain
+
+
+_LOOKAROUND = re.compile(r"\(\?<?[!=](?:\\.|[^()\\])*\)|\\b")
+"""Lookaheads and lookbehinds without nested groups, and word boundaries."""
+
+_KEYWORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+"""What a keyword's rule matches: textX turns a keyword into a regular expression that
+matches the word alone (``import\\b``), and keeps the word."""
 
 _CHARACTER_SET = re.compile(r"\[((?:\\.|[^\]^\\])+)\]")
 r"""A regular expression that is one set of plain characters, such as ``[.(\[]``."""
@@ -188,4 +212,5 @@ _FRIENDLY = {
     "BinaryOperator": "an operator",
     "UnaryOperator": "a unary operator",
     "BooleanValue": "true or false",
+    "EOF": "the end of the file",
 }

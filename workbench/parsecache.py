@@ -20,7 +20,7 @@ from typing import Any, Protocol
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem, paused_gc
 from lightrocks.workbench.cachestore import Memory, installed_version
-from lightrocks.workbench.depth import TOO_DEEP, deepest, deepest_node
+from lightrocks.workbench.depth import deepest, deepest_node
 from lightrocks.workbench.extensions import extensions_of
 from lightrocks.workbench.languages import Language
 from lightrocks.workbench.sources import sources_digest
@@ -34,7 +34,7 @@ class Store(Protocol):
     def put(self, key: str, result: ast.Unit | SyntaxProblem) -> None: ...
 
 
-FORMAT = "2"  # what a stored result means: raised to retire every result stored before
+FORMAT = "3"  # what a stored result means: raised to retire every result stored before
 MEMORY_ENTRIES = 10_000  # a large workspace plus the keystroke states of an editing session
 _memory: Memory[Any] = Memory(MEMORY_ENTRIES)
 _store: Store | None = None
@@ -70,11 +70,14 @@ def _parsed(language: Language, text: str, shown: str) -> Any:
     except SyntaxProblem as problem:
         return problem
     except RecursionError:
-        where = deepest(text, shown)
-        return SyntaxProblem(TOO_DEEP, where.line, where.column)
+        where, message = deepest(text, shown)
+        return SyntaxProblem(message, where.line, where.column)
     with paused_gc():
-        where = deepest_node(unit)
-    return unit if where is None else SyntaxProblem(TOO_DEEP, where.line, where.column)
+        found = deepest_node(unit)
+    if found is None:
+        return unit
+    where, message = found
+    return SyntaxProblem(message, where.line, where.column)
 
 
 def _key(language: Language, text: str, shown: str) -> str:

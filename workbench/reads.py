@@ -8,6 +8,7 @@ later whether the findings still hold: make every read again and compare.
 from __future__ import annotations
 
 import hashlib
+import os
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,10 +21,40 @@ def digest(content: bytes) -> str:
     return hashlib.blake2b(content, digest_size=20).hexdigest()
 
 
+SIZE_VARIABLE = "LIGHTROCKS_MODEL_BYTES"
+DEFAULT_SIZE_LIMIT = 16 * 1024 * 1024
+"""The largest model file read (bytes), a hundred times the largest example; a larger file
+is a finding instead of memory that parsing it would run out of."""
+
+
+def size_limit() -> int:
+    """``LIGHTROCKS_MODEL_BYTES`` when it is a number of bytes, else ``DEFAULT_SIZE_LIMIT``."""
+    setting = os.environ.get(SIZE_VARIABLE, "").strip()
+    return int(setting) if setting.isdigit() else DEFAULT_SIZE_LIMIT
+
+
+class TooLarge(OSError):
+    """A model file over :func:`size_limit`."""
+
+    def __init__(self, size: int, limit: int) -> None:
+        super().__init__(
+            f"the file is {size:,} bytes, over the limit of {limit:,} for a model "
+            f"(set {SIZE_VARIABLE} to raise it)"
+        )
+
+
 def raw(path: Path, texts: Mapping[Path, str]) -> bytes:
-    """The bytes of a model file: its editor buffer when there is one, else the file."""
+    """The bytes of a model file: its editor buffer when there is one, else the file; a
+    file over :func:`size_limit` is ``TooLarge`` before it is read."""
+    limit = size_limit()
     if path in texts:
-        return texts[path].encode("utf-8", "surrogateescape")
+        data = texts[path].encode("utf-8", "surrogateescape")
+        if len(data) > limit:
+            raise TooLarge(len(data), limit)
+        return data
+    size = path.stat().st_size
+    if size > limit:
+        raise TooLarge(size, limit)
     return path.read_bytes()
 
 

@@ -18,7 +18,7 @@ from lightrocks.workbench import parsecache
 from lightrocks.workbench.diagnostics import Diagnostics, did_you_mean
 from lightrocks.workbench.languages import Language, extensions, language_for
 from lightrocks.workbench.modelpath import ModelPath
-from lightrocks.workbench.reads import Reads, listing, raw
+from lightrocks.workbench.reads import Reads, TooLarge, listing, raw
 
 IMPLICIT_PACKAGES = ("lightrocks",)
 
@@ -112,6 +112,10 @@ class Workspace:
             return None
         try:
             data = raw(path, self.texts)
+        except TooLarge as error:
+            self.reads.file(path, None)
+            self.diagnostics.error(where, "LR0004", str(error))
+            return None
         except OSError as error:
             self.reads.file(path, None)
             self.diagnostics.error(where, "LR0004", f"cannot read file: {error.strerror}")

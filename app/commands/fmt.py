@@ -27,11 +27,12 @@ def _configure_fmt(sub: argparse._SubParsersAction) -> None:
 def cmd_fmt(args: argparse.Namespace) -> int:
     from lightrocks.metamodel.ast import Position
     from lightrocks.metamodel.grammar import SyntaxProblem
-    from lightrocks.workbench.depth import TOO_DEEP, deepest
+    from lightrocks.workbench.depth import deepest
     from lightrocks.workbench.diagnostics import Diagnostics
     from lightrocks.workbench.files import write_atomic
     from lightrocks.workbench.languages import extensions, language_for
     from lightrocks.workbench.modelpath import model_files
+    from lightrocks.workbench.reads import TooLarge, size_limit
 
     files = [f for p in existing_paths(args.paths) for f in model_files(p, extensions())]
     diagnostics = Diagnostics()
@@ -44,6 +45,10 @@ def cmd_fmt(args: argparse.Namespace) -> int:
         if not file.is_file():
             diagnostics.error(Position(str(file), 1, 1), "LR0004", "not a regular file")
             continue
+        if file.stat().st_size > size_limit():
+            too_large = TooLarge(file.stat().st_size, size_limit())
+            diagnostics.error(Position(str(file), 1, 1), "LR0004", str(too_large))
+            continue
         try:
             original[file] = file.read_text(encoding="utf-8")
             formatted[file] = language.format(original[file], str(file))
@@ -52,7 +57,8 @@ def cmd_fmt(args: argparse.Namespace) -> int:
                 Position(str(file), problem.line, problem.column), "LR0001", problem.message
             )
         except RecursionError:
-            diagnostics.error(deepest(original[file], str(file)), "LR0001", TOO_DEEP)
+            where, message = deepest(original[file], str(file))
+            diagnostics.error(where, "LR0001", message)
         except (UnicodeDecodeError, ValueError):
             diagnostics.error(Position(str(file), 1, 1), "LR0002", "not a text file")
     if diagnostics.has_errors:

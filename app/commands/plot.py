@@ -42,6 +42,6 @@ def cmd_plot(args: argparse.Namespace) -> int:
     except TraceError as error:
         print(f"lightrocks: error: {printable(str(error))}", file=sys.stderr)
         return EXIT_FINDINGS
-    outcome = printable(str(recorded.outcome))
+    outcome = printable(recorded.outcome or "unfinished")
     print(f"{printable(str(output))} written: {len(recorded.times)} samples, outcome {outcome}")
     return EXIT_OK

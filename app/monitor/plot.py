@@ -57,9 +57,9 @@ def recording(records: list[dict[str, Any]]) -> Recording:
             tcp = next((v for k, v in record.items() if k.endswith(".tcp")), None)
             if wrench is not None and tcp is not None:
                 result.times.append(time)
-                result.force.append(wrench["force"])
-                result.torque.append(wrench["torque"])
-                result.tcp.append(tcp)
+                result.force.append([float(v) for v in wrench["force"]])
+                result.torque.append([float(v) for v in wrench["torque"]])
+                result.tcp.append([float(v) for v in tcp])
         elif kind == "enter" and record.get("layer") in LAYERS:
             entered[record["state"]] = (record["layer"], time)
         elif kind == "exit" and record["state"] in entered:
@@ -187,9 +187,19 @@ def _labelled(skills: list[Span], duration: float) -> list[tuple[int, Span]]:
 
 
 def series(rec: Recording) -> str:
-    """The plotted samples as JSON, safe inside a script element, for whoever reads on."""
-    data = {"time": rec.times, "force": rec.force, "torque": rec.torque, "tcp": rec.tcp}
-    return json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+    """The plotted samples as JSON, safe inside a script element, for whoever reads on; a
+    number that is not finite is null, as JSON has none."""
+
+    def finite(rows: list[list[float]]) -> list[list[float | None]]:
+        return [[v if math.isfinite(v) else None for v in row] for row in rows]
+
+    data = {
+        "time": rec.times,
+        "force": finite(rec.force),
+        "torque": finite(rec.torque),
+        "tcp": finite(rec.tcp),
+    }
+    return json.dumps(data, separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
 
 
 def page(rec: Recording, title: str, svg: str) -> str:

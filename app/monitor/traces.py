@@ -7,6 +7,10 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from lightrocks.app.monitor.schema import TEXT_FIELDS, RecordError, check
+
+STATE_KINDS = {kind for kind, fields in TEXT_FIELDS.items() if "state" in fields}
+
 
 class TraceError(ValueError):
     """The file is not a trace this tool can read."""
@@ -40,6 +44,10 @@ def _record(path: Path, number: int, line: bytes) -> dict[str, Any]:
         raise TraceError(f"{path}:{number}: nested too deeply") from None
     if not isinstance(record, dict) or "time" not in record or "kind" not in record:
         raise TraceError(f"{path}:{number}: not a trace record")
+    try:
+        check(record)
+    except RecordError as error:
+        raise TraceError(f"{path}:{number}: {error}") from None
     return record
 
 
@@ -49,6 +57,17 @@ def header(records: list[dict[str, Any]]) -> tuple[Path | None, list[Path]]:
     if first.get("kind") != "run" or not isinstance(first.get("model"), str):
         return None, []
     return Path(first["model"]), [Path(p) for p in first.get("path", []) if isinstance(p, str)]
+
+
+def check_states(records: list[dict[str, Any]], known: set[str], model: Path) -> None:
+    """Every state the trace names is one of the model's (``known``, their paths)."""
+    for record in records:
+        state = record.get("state") if record["kind"] in STATE_KINDS else None
+        if state is not None and state not in known:
+            raise TraceError(
+                f"the trace names the state {state}, which {model.name} does not have: "
+                "was the run recorded with another model? give it with --model"
+            )
 
 
 def task_name(records: list[dict[str, Any]]) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 
 from lightrocks.languages.domain.ranges import command_ranges
@@ -105,6 +106,11 @@ def _commands(context: object) -> Iterator[tuple[Loaded, ast.Device, ast.Command
 @coco("LR0404", Severity.ERROR, "command defaults and safe ranges fit the parameter type")
 def command_defaults_fit(context: object) -> Iterator[Finding]:
     types = _types(context)
+    for loaded in _domain_units(context):
+        for node in ast.walk(loaded.unit.declarations):
+            if isinstance(node, ast.Quantity) and not math.isfinite(node.value):
+                message = f"'{node.text}' is beyond the largest number a Real holds"
+                yield node.position, f"{message} (about 1.8e308 in SI units)", ""
     for loaded, _, command in _commands(context):
         for parameter in command.parameters:
             declared = types.resolve(loaded, parameter.type)

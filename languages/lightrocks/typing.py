@@ -8,6 +8,7 @@ built-in functions.
 
 from __future__ import annotations
 
+import math
 from collections import defaultdict
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -405,6 +406,13 @@ class Typing:
                 result = quantity_of(expression)
                 if result is UNKNOWN:
                     self._unknown_unit(expression)
+                if not math.isfinite(expression.value):
+                    self.report(
+                        "LR0302",
+                        expression.position,
+                        f"'{expression.text}' is beyond the largest number a Real holds "
+                        "(about 1.8e308 in SI units)",
+                    )
                 return result
             case ast.BooleanLiteral():
                 return BOOLEAN

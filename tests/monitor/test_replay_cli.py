@@ -35,7 +35,7 @@ def test_a_model_that_is_gone_is_a_usage_error(tmp_path: Path, capsys) -> None:
     header = {"time": 0.0, "kind": "run", "model": str(tmp_path / "Gone.lr"), "path": []}
     trace = write(tmp_path / "run.jsonl", header, ENTER)
     assert main(["replay", str(trace), "--monitor", "0"]) == 2
-    assert "no such file" in said(capsys)
+    assert "is not on this machine: give the model with --model FILE" in said(capsys)
 
 
 @pytest.mark.parametrize(

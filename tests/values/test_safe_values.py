@@ -106,7 +106,7 @@ def test_deep_nesting_is_a_finding(
     status = main(["check", str(tmp_path)])
     out = capsys.readouterr().out
     assert status == 1
-    assert "LR0001: nested too deeply" in out
+    assert "LR0001: expression nested too deeply" in out
     assert "Deep.lr:5:" + (f"{column}:" if column else "") in out
     assert "1 error(s)" in out
 
