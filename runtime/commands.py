@@ -6,7 +6,9 @@ action or for a round of actions of orthogonal regions, and what becomes of each
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 from lightrocks.runtime.contract import (
@@ -162,7 +164,7 @@ class CommandRunner:
     def _request(self, action: Action, arguments: dict[str, Any]) -> _Request:
         """The command of ``action`` with its end conditions, the end conditions of every
         enclosing state, queued events and the next time event as stop conditions."""
-        watch = _Watch()
+        watch = _Watch(partial(self._read_sensors, action) if action.SENSORS else None)
         stops = [
             StopCondition(c.name, watch(_bound(c.holds, action), c.location or action.LOCATION))
             for c in action.ENDS
@@ -204,8 +206,8 @@ class CommandRunner:
             self._hold()
             message = f"adapter broke the contract: {result!r} is no outcome of this command"
             return self._error(action, message, action.LOCATION)
-        self._write("stop", state=action.path, outcome=result.outcome,
-                    sensors=self._sensors(action))  # fmt: skip
+        sensors = watch.sensors if watch.sensors is not None else self._sensors(action)
+        self._write("stop", state=action.path, outcome=result.outcome, sensors=sensors)
         if result.outcome in preemptions:
             self._hold()
             owner, outcome, _, _ = preemptions[result.outcome]
@@ -243,9 +245,13 @@ class CommandRunner:
         return False
 
     def _sensors(self, action: Action) -> dict[str, Any]:
+        """The sensors the action reads, now (after a timeout, no stop condition held)."""
         if not action.SENSORS:
             return {}
-        snapshot = self.snapshot()
+        return self._read_sensors(action, self.snapshot())
+
+    @staticmethod
+    def _read_sensors(action: Action, snapshot: Snapshot) -> dict[str, Any]:
         return {
             f"{device}.{sensor}": to_json(getattr(getattr(snapshot, device), sensor))
             for device, sensor in action.SENSORS
@@ -258,17 +264,24 @@ def _bound(holds: Any, owner: State) -> Any:
 
 class _Watch:
     """Wraps stop predicates: the first one that raises stops the command (it holds) and
-    keeps its fault, which the executor reports after the adapter returned."""
+    keeps its fault, which the executor reports after the adapter returned. The first one
+    that holds reads the action's sensors (``read``) on the snapshot it held on: the stop
+    record tells what the condition saw, not what the adapter shows once it holds the arm."""
 
-    def __init__(self) -> None:
+    def __init__(self, read: Callable[[Snapshot], dict[str, Any]] | None = None) -> None:
         self.fault: DescribedFault | None = None
+        self.read = read
+        self.sensors: dict[str, Any] | None = None
 
     def __call__(self, holds: Any, location: str) -> Any:
         def watched(s: Snapshot) -> bool:
             if self.fault is not None:
                 return True
             try:
-                return bool(holds(s))
+                held = bool(holds(s))
+                if held and self.sensors is None and self.read is not None:
+                    self.sensors = self.read(s)
+                return held
             except KeyboardInterrupt:
                 raise
             except BaseException as exc:  # reported as the action's error

@@ -289,7 +289,10 @@ class Executor(CommandRunner):
             initialize = getattr(state, "initialize", None)
             if initialize is not None:
                 initialize(s)
-            state.on_entry(s)
+            try:
+                state.on_entry(s)
+            except Exception as exc:  # reported where the entry action is written
+                raise _located(exc, state.ENTRY_LOCATION) from None
             if self._timed[state]:
                 self._arm(state, s)
             if state.INVARIANTS:
@@ -357,7 +360,10 @@ class Executor(CommandRunner):
         self._write("transition", state=owner.path, source=t.source, target=t.target,
                     stimulus=t.stimulus)  # fmt: skip
         if t.action is not None:
-            t.action(owner, s)
+            try:
+                t.action(owner, s)
+            except Exception as exc:  # reported where the transition is written
+                raise _located(exc, t.location) from None
         if t.post is not None and not t.post(owner, s):
             return self._error(owner, "postcondition violated", t.location)
         if t.target in owner.end_names:  # ended like in a final state: nothing to remember
@@ -414,6 +420,8 @@ class Executor(CommandRunner):
             self._exit(state.current, s)
         try:
             state.on_exit(s)
+        except Exception as exc:  # reported where the exit action is written
+            raise _located(exc, state.EXIT_LOCATION) from None
         finally:  # left even when its exit action fails: the error belongs to the parent
             self._write("exit", state=state.path)
             if self._timers:
@@ -548,3 +556,10 @@ class Executor(CommandRunner):
             if violated is not None:
                 return violated
         return None
+
+
+def _located(exc: Exception, location: str) -> Exception:
+    """A fault of model code with the place of that code (unless it has one already)."""
+    if isinstance(exc, DescribedFault) or not location:
+        return exc
+    return DescribedFault(describe(exc), location)

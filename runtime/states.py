@@ -59,6 +59,9 @@ class State:
 
     NAME: ClassVar[str] = ""
     LOCATION: ClassVar[str] = ""
+    ENTRY_LOCATION: ClassVar[str] = ""
+    EXIT_LOCATION: ClassVar[str] = ""
+    """Where the entry and exit actions are written: where their faults are reported."""
     FINAL: ClassVar[bool] = False
     LAYER: ClassVar[str | None] = None
     OUTCOMES: ClassVar[tuple[str, ...]] = ()

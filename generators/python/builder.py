@@ -227,7 +227,11 @@ class Builder:
             view.constants.append(f"INITIAL = {initial!r}")
         children = ", ".join(
             [f"{n!r}: {self._class_of(i)}" for n, i in region.states.items()]
-            + [f"{n!r}: rt.Choice" for n, p in region.pseudostates.items() if p.kind == "choice"]
+            + [
+                f"{n!r}: {_choice(n, p)}"
+                for n, p in region.pseudostates.items()
+                if p.kind == "choice"
+            ]
         )
         view.tables.append(f"CHILDREN: ClassVar[dict[str, type[rt.State]]] = {{{children}}}")
         bindings = []
@@ -323,6 +327,8 @@ class Builder:
                 name = "on_entry" if action.kind == "entry" else "on_exit"
                 body = self._statements(action.statements, scope) or ["pass"]
                 view.methods.append(Method(name, ", s: rt.Snapshot", "None", body))
+                where = f"{action.kind.upper()}_LOCATION = {str(action.position)!r}"
+                view.constants.append(where)
 
     def _invariants(self, view: ClassView, invariants: list) -> None:
         items = []
@@ -414,6 +420,13 @@ def _extension_views(region: Region) -> list[ExtensionView]:
 
 def _component_class(component: Component) -> str:
     return identifier(component.name)
+
+
+def _choice(name: str, choice: ast.Pseudostate) -> str:
+    """A choice pseudostate's class, made where it is named: its ``LOCATION`` is where a
+    choice none of whose branches holds is reported."""
+    constants = f"{{'NAME': {name!r}, 'LOCATION': {str(choice.position)!r}}}"
+    return f"type({name!r}, (rt.Choice,), {constants})"
 
 
 def _extends(state: ast.State) -> bool:
