@@ -146,6 +146,7 @@ def test_the_package_exports_every_class_by_its_model_name(package):
     names = sorted(package.COMPONENTS)
     assert "screwing.tasks.ScrewTask" in names and "plain.Turnstile" in names
     for name in names:
-        assert package.component(name).NAME == name.rpartition(".")[2]
+        simple = name.rpartition(".")[2]
+        assert package.component(name).NAME == simple
     with pytest.raises(KeyError):
         package.component("screwing.tasks.NoSuchTask")
