@@ -147,6 +147,6 @@ def test_the_package_exports_every_class_by_its_model_name(package):
     assert "screwing.tasks.ScrewTask" in names and "plain.Turnstile" in names
     for name in names:
         simple = name.rpartition(".")[2]
-        assert package.component(name).NAME == simple
+        assert simple == package.component(name).NAME
     with pytest.raises(KeyError):
         package.component("screwing.tasks.NoSuchTask")
