@@ -62,7 +62,7 @@ class Judge:
         for path, (variable, term) in sorted(self.terms.read.items()):
             if path not in names or variable.kind == "unknown":
                 continue
-            parts.append(f"{path} = {show(variable, model.eval(term, model_completion=True))}")
+            parts.append(f"{path} = {show(variable, model.evaluate(term, model_completion=True))}")
         return ", ".join(parts)
 
 
