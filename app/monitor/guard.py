@@ -19,7 +19,7 @@ from __future__ import annotations
 import ipaddress
 import secrets
 import socket
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from functools import cache
 from typing import Any
 
@@ -155,3 +155,27 @@ async def _refuse(scope: dict[str, Any], send: Any, reason: str) -> None:
     start_headers += [(k.lower().encode(), v.encode()) for k, v in headers().items()]
     await send({"type": "http.response.start", "status": 403, "headers": start_headers})
     await send({"type": "http.response.body", "body": body})
+
+
+def serve(make_app: Callable[[Guard], Any], host: str, port: int, token: str, name: str) -> str:
+    """Serve ``make_app(guard)`` behind its guard on a daemon thread named ``name``; the URL
+    with the token once it listens (the monitor and the studio start alike)."""
+    import threading
+    import time
+
+    import uvicorn
+
+    guard = Guard(host, token)
+    bind = host.strip("[]")
+    config = uvicorn.Config(Guarded(make_app(guard), guard), host=bind, port=port,
+                            log_level="warning")  # fmt: skip
+    server = uvicorn.Server(config)
+    thread = threading.Thread(target=server.run, name=name, daemon=True)
+    thread.start()
+    while not server.started:
+        if not thread.is_alive():
+            raise OSError(f"the {name} cannot listen on {host}:{port}")
+        time.sleep(0.02)
+    bound = server.servers[0].sockets[0].getsockname()[1]
+    shown = f"[{bind}]" if ":" in bind else bind
+    return f"http://{shown}:{bound}/?token={token}"

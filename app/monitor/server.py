@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import asyncio
 import secrets
-import threading
 import time
 from contextlib import suppress
 from dataclasses import dataclass, field
@@ -18,7 +17,7 @@ from typing import Any
 
 from lightrocks.app.monitor.control import RunControl
 from lightrocks.app.monitor.feed import Feed
-from lightrocks.app.monitor.guard import Guard, Guarded
+from lightrocks.app.monitor.guard import Guard, serve
 
 PUSH_PERIOD = 0.1
 """Seconds between two pushes of new records to a page."""
@@ -162,19 +161,4 @@ class Monitor:
 
     def serve(self, host: str, port: int) -> str:
         """Start serving on a daemon thread; the URL with the token once it listens."""
-        import uvicorn
-
-        guard = Guard(host, self.token)
-        app = Guarded(self.app(guard), guard)
-        bind = host.strip("[]")
-        config = uvicorn.Config(app, host=bind, port=port, log_level="warning")
-        server = uvicorn.Server(config)
-        thread = threading.Thread(target=server.run, name="monitor", daemon=True)
-        thread.start()
-        while not server.started:
-            if not thread.is_alive():
-                raise OSError(f"the monitor cannot listen on {host}:{port}")
-            time.sleep(0.02)
-        bound = server.servers[0].sockets[0].getsockname()[1]
-        shown = f"[{bind}]" if ":" in bind else bind
-        return f"http://{shown}:{bound}/?token={self.token}"
+        return serve(self.app, host, port, self.token, "monitor")

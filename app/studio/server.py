@@ -12,13 +12,11 @@ another site's page, and answers with the monitor's content security policy (see
 from __future__ import annotations
 
 import secrets
-import threading
-import time
 from importlib.resources import files
 from typing import Any
 
 from lightrocks.app.errors import ModelError
-from lightrocks.app.monitor.guard import Guard, Guarded
+from lightrocks.app.monitor.guard import Guard, serve
 from lightrocks.app.studio.workspace import Conflict, Studio
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.generators import GenerationError
@@ -114,17 +112,4 @@ class StudioServer:
 
     def serve(self, port: int = 0) -> str:
         """Start serving on a daemon thread; the URL with the token once it listens."""
-        import uvicorn
-
-        guard = Guard(HOST, self.token)
-        app = Guarded(self.app(guard), guard)
-        config = uvicorn.Config(app, host=HOST, port=port, log_level="warning")
-        server = uvicorn.Server(config)
-        thread = threading.Thread(target=server.run, name="studio", daemon=True)
-        thread.start()
-        while not server.started:
-            if not thread.is_alive():
-                raise OSError(f"the studio cannot listen on {HOST}:{port}")
-            time.sleep(0.02)
-        bound = server.servers[0].sockets[0].getsockname()[1]
-        return f"http://{HOST}:{bound}/?token={self.token}"
+        return serve(self.app, HOST, port, self.token, "studio")
