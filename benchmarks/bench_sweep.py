@@ -19,6 +19,8 @@ from pathlib import Path
 
 from distributed import Client, LocalCluster
 
+from lightrocks.app.pipeline import load
+from lightrocks.app.specs import run_spec
 from lightrocks.app.sweep import grid_points, sweep
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -42,9 +44,12 @@ def timed_sweep(workers: int, adapter: str, seeds: range) -> tuple[float, list]:
         Client(cluster) as client,
     ):
         client.wait_for_workers(workers)
+        search_path = [ROOT / "examples"]
+        cls = load(MODEL, search_path)
         points = grid_points([], noises)
+        specs = [run_spec(cls, MODEL, search_path, [], adapter, noise=p.noise) for p in points]
         start = time.perf_counter()
-        results = sweep(client, MODEL, [ROOT / "examples"], adapter, points, seeds)
+        results = sweep(client, points, specs, seeds)
         return time.perf_counter() - start, results
 
 

@@ -1,94 +1,71 @@
 """The LightRocks state runtime: what generated code imports (as ``import runtime as rt``).
 
-It depends on the standard library, numpy and pinocchio only, never on the workbench.
+It depends on the standard library, numpy and pinocchio only, never on the workbench. Its
+names load on first use (PEP 562): the language's checks import ``safety`` alone and do not
+pay for the physics libraries the components bring.
 """
 
-from lightrocks.runtime.binding import BindingError, bind, problems
-from lightrocks.runtime.component import (
-    ActionComponent,
-    Cell,
-    Component,
-    CompositeComponent,
-    ParallelComponent,
-)
-from lightrocks.runtime.contract import (
-    TIMEOUT,
-    Adapter,
-    AdapterError,
-    Command,
-    CommandResult,
-    Snapshot,
-    StopCondition,
-    Vector3,
-    Wrench,
-)
-from lightrocks.runtime.environment import Environment, SceneObject, object_name
-from lightrocks.runtime.executor import Executor
-from lightrocks.runtime.faults import ERROR, PREEMPTED, Abort, Fault, UnknownEvent
-from lightrocks.runtime.frames import Frame, coordinate, rotX, rotY, rotZ, transl
-from lightrocks.runtime.safety import Bound, SafeRange
-from lightrocks.runtime.sampling import Sampler
-from lightrocks.runtime.states import (
-    Action,
-    Choice,
-    Composite,
-    Condition,
-    Final,
-    Invariant,
-    Parallel,
-    State,
-    Transition,
-)
-from lightrocks.runtime.trace import Trace, to_json
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
 
 DEFAULT_BUDGET = 30.0  # seconds, when neither the action nor its device names a timeout
 
-__all__ = [
-    "DEFAULT_BUDGET",
-    "ERROR",
-    "PREEMPTED",
-    "TIMEOUT",
-    "Abort",
-    "Action",
-    "ActionComponent",
-    "Adapter",
-    "AdapterError",
-    "BindingError",
-    "Bound",
-    "Cell",
-    "Choice",
-    "Command",
-    "CommandResult",
-    "Component",
-    "Composite",
-    "CompositeComponent",
-    "Condition",
-    "Environment",
-    "Executor",
-    "Fault",
-    "Final",
-    "Frame",
-    "Invariant",
-    "Parallel",
-    "ParallelComponent",
-    "SafeRange",
-    "Sampler",
-    "SceneObject",
-    "Snapshot",
-    "State",
-    "StopCondition",
-    "Trace",
-    "Transition",
-    "UnknownEvent",
-    "Vector3",
-    "Wrench",
-    "bind",
-    "coordinate",
-    "object_name",
-    "problems",
-    "rotX",
-    "rotY",
-    "rotZ",
-    "to_json",
-    "transl",
-]
+_HOMES = {
+    "binding": ("BindingError", "bind", "problems"),
+    "component": (
+        "ActionComponent",
+        "Cell",
+        "Component",
+        "CompositeComponent",
+        "ParallelComponent",
+    ),
+    "contract": (
+        "Adapter",
+        "AdapterError",
+        "Command",
+        "CommandResult",
+        "Snapshot",
+        "StopCondition",
+        "TIMEOUT",
+        "Vector3",
+        "Wrench",
+    ),
+    "environment": ("Environment", "SceneObject", "object_name"),
+    "executor": ("Executor",),
+    "faults": ("Abort", "ERROR", "Fault", "PREEMPTED", "UnknownEvent"),
+    "frames": ("Frame", "coordinate", "rotX", "rotY", "rotZ", "transl"),
+    "safety": ("Bound", "SafeRange"),
+    "sampling": ("Sampler",),
+    "states": (
+        "Action",
+        "Choice",
+        "Composite",
+        "Condition",
+        "Final",
+        "Invariant",
+        "Parallel",
+        "State",
+        "Transition",
+    ),
+    "trace": ("Trace", "to_json"),
+}
+"""Each submodule and the names it exports."""
+
+_MODULE_OF = {name: module for module, names in _HOMES.items() for name in names}
+
+__all__ = ["DEFAULT_BUDGET", *sorted(_MODULE_OF)]
+
+
+def __getattr__(name: str) -> Any:
+    module = _MODULE_OF.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})

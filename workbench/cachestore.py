@@ -7,18 +7,22 @@ Several processes may share a folder: an entry is written to a temporary file an
 into place, and an entry that another process deleted is a miss, never an error.
 
 A ledger beside the entries keeps the folder's size, so that no process lists the folder to
-learn it: each process appends the size of every entry it writes and sums the ledger, the
-lines of other processes included (a long ledger is summed into one line). Only when the
-sum passes the limit is the folder listed: the least recently used
+learn it: each process appends the size of every entry it writes, and sums the ledger, the
+lines of other processes included (a long ledger is summed into one line), whenever it has
+written a sixteenth of the limit since it last did, adding its own writes in between.
+Only when the sum passes the limit is the folder listed: the least recently used
 entries are deleted down to three quarters of the limit, and the ledger starts anew with
 the size found. A line appended at the moment another process rewrote the ledger may be
-lost; the next eviction sets the ledger right.
+lost; the next eviction sets the ledger right. A read marks an entry used only when its
+time is older than ``TOUCH_AFTER``: a day is fine enough a grain for a cache's order of use,
+and a warm check of a large workspace does not rewrite a thousand files' times.
 """
 
 from __future__ import annotations
 
 import os
 import tempfile
+import time
 from contextlib import suppress
 from functools import cache
 from importlib.metadata import PackageNotFoundError, version
@@ -30,6 +34,8 @@ DEFAULT_LIMIT = 256 * 2**20
 LEDGER = "ledger"
 """The file of the sizes written, beside the folders of entries."""
 LEDGER_LINES = 100
+TOUCH_AFTER = 3600.0
+"""Seconds after its last marked use an entry's time is set again when it is read."""
 """A ledger longer than this is summed into one line, so that it stays quick to read."""
 
 V = TypeVar("V")
@@ -87,17 +93,22 @@ class Folder:
     def __init__(self, folder: Path, limit: int | None = None) -> None:
         self.folder = folder
         self.limit = configured_limit() if limit is None else limit
+        self._summed: int | None = None  # the ledger's sum when this process last read it
+        self._since = 0  # bytes this process wrote since then
 
     def get(self, key: str) -> str | None:
         """The entry ``key``, now the most recently used; ``None`` when it is missing or
         unreadable."""
         path = self.folder / key[:2] / key
         try:
-            text = path.read_text(encoding="utf-8")
+            with path.open("rb") as file:
+                used = os.fstat(file.fileno()).st_mtime
+                text = file.read().decode("utf-8")
         except (OSError, ValueError):
             return None
-        with suppress(OSError):
-            os.utime(path)
+        if time.time() - used > TOUCH_AFTER:
+            with suppress(OSError):
+                os.utime(path)
         return text
 
     def put(self, key: str, text: str) -> None:
@@ -132,17 +143,26 @@ class Folder:
                 continue
             size -= length
         _write_atomic(self.folder / LEDGER, b"%d\n" % size)
+        self._summed, self._since = size, 0
 
     def _recorded(self, size: int) -> int:
-        """Add ``size`` to the ledger; the sum of the ledger, with what other processes added."""
-        with (self.folder / LEDGER).open("ab+") as ledger:
+        """Add ``size`` to the ledger; the folder's size as far as this process knows: the
+        ledger's sum, read again once this process has written a sixteenth of the limit."""
+        path = self.folder / LEDGER
+        self._since += size
+        if self._summed is not None and self._since < self.limit // 16:
+            with path.open("ab") as ledger:
+                ledger.write(b"%d\n" % size)
+            return self._summed + self._since
+        with path.open("ab+") as ledger:
             ledger.write(b"%d\n" % size)
             ledger.flush()
             ledger.seek(0)
             lines = ledger.read().split()
         total = sum(int(line) for line in lines if line.isdigit())
         if len(lines) > LEDGER_LINES:
-            _write_atomic(self.folder / LEDGER, b"%d\n" % total)
+            _write_atomic(path, b"%d\n" % total)
+        self._summed, self._since = total, 0
         return total
 
 

@@ -18,7 +18,7 @@ import os
 import sys
 from collections.abc import Iterable, Mapping
 from functools import cache
-from importlib.metadata import entry_points
+from importlib.metadata import EntryPoints, entry_points
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -98,8 +98,8 @@ def code_digest() -> str:
     install changes the sources without changing any version."""
     digest = hashlib.blake2b(digest_size=20)
     places = checking_code()
-    for group in GROUPS:
-        for entry in sorted(entry_points(group=group), key=lambda e: (e.name, e.value)):
+    for group, entries in _registered().items():
+        for entry in sorted(entries, key=lambda e: (e.name, e.value)):
             release = entry.dist.version if entry.dist is not None else ""
             digest.update(f"{group}\x00{entry.name}\x00{entry.value}\x00{release}\x00".encode())
     digest.update(installed_version().encode() + b"\x00")
@@ -112,9 +112,17 @@ def checking_code() -> set[Path]:
     registered language and extension. The application floor is not part of it, so an edit
     of the command line or the monitor keeps every cached finding."""
     places = {Path(__file__).resolve().parent.parent / name for name in _CHECKING_CODE}
-    for group in GROUPS:
-        places |= {_sources(entry.module) for entry in entry_points(group=group)}
+    for entries in _registered().values():
+        places |= {_sources(entry.module) for entry in entries}
     return places
+
+
+@cache
+def _registered() -> dict[str, EntryPoints]:
+    """The entry points of every group in ``GROUPS``, read with one scan of the installed
+    distributions (each scan costs a warm check tens of milliseconds)."""
+    found = entry_points()
+    return {group: found.select(group=group) for group in GROUPS}
 
 
 def _sources(module: str) -> Path:

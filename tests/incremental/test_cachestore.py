@@ -63,12 +63,25 @@ def test_eviction_keeps_the_most_recently_used_entries(tmp_path: Path) -> None:
     written = keys(10)
     for index, key in enumerate(written):
         folder.put(key, ENTRY)
-        age(folder, key, 100 - index)  # the first written is the oldest
+        age(folder, key, (100 - index) * cachestore.TOUCH_AFTER)  # the first is the oldest
     assert folder.get(written[0]) == ENTRY  # used now: the most recently used
     newest = keys(11)[10]
     folder.put(newest, ENTRY)  # past the limit: down to three quarters of it, 7 entries
     kept = {key for key in [*written, newest] if folder.get(key) is not None}
     assert kept == {written[0], *written[5:], newest}
+
+
+def test_a_read_marks_only_entries_not_marked_lately(tmp_path: Path) -> None:
+    folder = Folder(tmp_path, limit=10 * len(ENTRY))
+    recent, old = keys(2)
+    for key in (recent, old):
+        folder.put(key, ENTRY)
+    age(folder, recent, cachestore.TOUCH_AFTER / 2)
+    age(folder, old, cachestore.TOUCH_AFTER * 2)
+    before = {key: (tmp_path / key[:2] / key).stat().st_mtime for key in (recent, old)}
+    assert folder.get(recent) == ENTRY and folder.get(old) == ENTRY
+    assert (tmp_path / recent[:2] / recent).stat().st_mtime == before[recent]
+    assert (tmp_path / old[:2] / old).stat().st_mtime > before[old] + cachestore.TOUCH_AFTER
 
 
 def test_the_folder_stays_within_its_limit(tmp_path: Path) -> None:
