@@ -22,7 +22,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from lightrocks.runtime.commands import CommandRunner, Done, Preemption, Timer
-from lightrocks.runtime.contract import Adapter, Snapshot
+from lightrocks.runtime.contract import TIMEOUT, Adapter, Snapshot
 from lightrocks.runtime.environment import Environment
 from lightrocks.runtime.faults import (
     ERROR,
@@ -37,6 +37,7 @@ from lightrocks.runtime.faults import (
 from lightrocks.runtime.states import Action, Choice, Composite, Parallel, State, Transition
 from lightrocks.runtime.trace import Trace
 from lightrocks.runtime.tree import (
+    BUDGET_SPENT,
     active_children,
     known_events,
     matches,
@@ -514,6 +515,8 @@ class Executor(CommandRunner):
         self._write("event", name=transition.stimulus, state=state.path)
         if transition.guard is not None and not transition.guard(owner, s):
             return None
+        if transition is BUDGET_SPENT:
+            return (state, TIMEOUT)
         return self._react(state, transition, s)
 
     def _preempt(self, preemption: Preemption) -> Done:

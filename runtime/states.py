@@ -93,6 +93,9 @@ class Composite(State):
     ENDS: ClassVar[tuple[Condition, ...]] = ()
     TRANSITIONS: ClassVar[tuple[Transition, ...]] = ()
     BINDINGS: ClassVar[Mapping[str, Callable[[Any, Snapshot], dict[str, Any]]]] = {}
+    BUDGET: ClassVar[float | None] = None
+    """Seconds of adapter time a skill or task may take (``<<timeout>>``), or no limit: once
+    spent, what runs inside is left and the state ends with the outcome ``timeout``."""
 
     def __init__(self, parent: Composite | None = None, name: str | None = None) -> None:
         super().__init__(parent, name)

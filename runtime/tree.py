@@ -8,6 +8,10 @@ from lightrocks.runtime.contract import TIMEOUT
 from lightrocks.runtime.faults import ERROR, PREEMPTED
 from lightrocks.runtime.states import Action, Composite, Parallel, State, Transition
 
+BUDGET_SPENT = Transition(source="", target="", stimulus=TIMEOUT,
+                          delay=lambda state, _: state.BUDGET)  # fmt: skip
+"""The time event of a composite's ``BUDGET``: it ends the composite with ``timeout``."""
+
 
 def known_events(top: State) -> frozenset[str]:
     """Every event the state tree can take: declared ones and the stimuli that are no
@@ -58,8 +62,10 @@ def timed_events(state: State) -> tuple[tuple[State, Transition], ...]:
     in which they fire at one deadline); each with the state its delay belongs to."""
     parent = state.parent
     leaving = parent.transitions_from(state.name) if parent is not None else ()
+    budget = [(state, BUDGET_SPENT)] if getattr(state, "BUDGET", None) is not None else []
     return tuple(
         [(state, t) for t in state.INTERNAL if t.delay is not None]
+        + budget
         + [(parent, t) for t in leaving if t.delay is not None]
     )
 

@@ -210,6 +210,9 @@ class Builder:
             self._action(component, view, scope)
         else:
             self._region(region, view, [])
+            budget = _budget(component)
+            if budget is not None:  # <<timeout>> on a skill or task
+                view.constants.append(f"BUDGET = {budget!r}")
         view.extensions = _extension_views(region)
         return view
 
@@ -433,13 +436,9 @@ def _extends(state: ast.State) -> bool:
     return ast.stereotype(state.stereotypes, "extends") is not None
 
 
-def _budget(component: Component | None) -> float | None:
-    while component is not None:
-        found = seconds(stereotype_value(component.statechart.stereotypes, "timeout"))
-        if found is not None:
-            return found
-        component = component.base
-    return None
+def _budget(component: Component) -> float | None:
+    found = component.budget
+    return seconds(found.value) if found is not None else None
 
 
 def _sensors(region: Region, scope: Scope) -> list[tuple[str, str]]:

@@ -50,7 +50,9 @@ class Children:
         self._body(step, "N", [f"{instance}({', '.join(kept)});"])
         self._body(step, "P0", [f"{instance}({', '.join(['execute := FALSE', *kept])});"])
         branches = []
-        for outcome in ("error", *info.imported.region.outcomes):
+        for outcome in ("error", "timeout", *info.imported.region.outcomes):
+            if outcome not in child.outcomes:
+                continue  # a child without a budget never times out
             flag = f"{instance}.{child.outcomes[outcome]}"
             branches += self._react(node, outcome, self._remember(node), [flag])
         return branches
@@ -157,21 +159,19 @@ class Children:
     def _timeout(self, action: Component, device: ast.Device) -> float:
         """The ``timeout`` stereotype of the action or of the one it extends, else its
         device's, else 30 s."""
-        found = None
-        extended: Component | None = action
-        while found is None and extended is not None:
-            found = ast.stereotype(extended.statechart.stereotypes, "timeout")
-            extended = extended.base
-        found = found or ast.stereotype(device.stereotypes, "timeout")
-        if found is None or not found.value:
-            return DEFAULT_TIMEOUT
-        number, _, unit = found.value.strip().partition(" ")
-        try:
-            return float(number) * lookup(unit.strip() or "s").factor
-        except (ValueError, UnitError):
-            raise GenerationError(
-                f"{found.position}: timeout '{found.value}' is not a time"
-            ) from None
+        found = action.budget or ast.stereotype(device.stereotypes, "timeout")
+        return DEFAULT_TIMEOUT if found is None or not found.value else seconds(found)
+
+
+def seconds(stereotype: ast.Stereotype) -> float:
+    """A ``<<timeout="…">>`` value in seconds."""
+    number, _, unit = (stereotype.value or "").strip().partition(" ")
+    try:
+        return float(number) * lookup(unit.strip() or "s").factor
+    except (ValueError, UnitError):
+        raise GenerationError(
+            f"{stereotype.position}: timeout '{stereotype.value}' is not a time"
+        ) from None
 
 
 def _arguments(node: Node) -> dict[str, ast.Expression]:

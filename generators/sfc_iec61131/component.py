@@ -102,7 +102,8 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
                 variable.initial = initial_value(parameter.default, declared, what)
                 block.inputs.append(variable)
         self.scope.names.update(block.parameters)
-        for outcome in ("done", "error", *region.outcomes):
+        spent = ("timeout",) if self.component.budget is not None else ()
+        for outcome in ("done", "error", *spent, *region.outcomes):
             if outcome not in block.outcomes:
                 block.outcomes[outcome] = self.names.claim(outcome)
                 block.outputs.append(Variable(block.outcomes[outcome], "BOOL"))
@@ -268,6 +269,7 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
                     continue
                 if transition.stimulus in outcomes:
                     continue
+                branches += self._budget_branches(node, stop, waiting)
                 guard = self._guard(transition.guard)
                 chain = node.chain()[: node.chain().index(owner) + 1]
                 exits = stop + self._exits(chain)

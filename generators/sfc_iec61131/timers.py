@@ -5,20 +5,23 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from lightrocks.generators.sfc_iec61131.children import seconds
 from lightrocks.generators.sfc_iec61131.conditions import negate
 from lightrocks.generators.sfc_iec61131.expressions import literal, time_literal
 from lightrocks.generators.sfc_iec61131.hierarchy import Node
 from lightrocks.generators.sfc_iec61131.ir import Variable
+from lightrocks.generators.sfc_iec61131.network import Branch
 from lightrocks.languages.domain.types import NUMBER
 from lightrocks.metamodel import ast
 
 
 @dataclass
 class Timer:
-    """A time event ``after(d)`` of one state: an on-delay timer started on entry and a flag
-    raised once its deadline has passed, so that it fires at most once per entry."""
+    """A time event ``after(d)`` of one state, or the statechart's budget (``<<timeout>>``):
+    an on-delay timer started on entry and a flag raised once its deadline has passed, so
+    that it fires at most once per entry."""
 
-    transition: ast.Transition | ast.InternalTransition
+    transition: ast.Transition | ast.InternalTransition | None  # None: the budget
     instance: str
     passed: str
     duration: str
@@ -56,9 +59,33 @@ class TimeEvents:
                 )
                 timer = Timer(transition, instance, passed, duration)
                 self.timers.setdefault(id(node) if node else None, []).append(timer)
+        budget = self.component.budget
+        if budget is not None:
+            instance = self.names.claim(f"{self.component.name}_budget")
+            passed = self.names.claim(f"{instance}_passed")
+            comment = f"<<timeout>> at {budget.position.line}:{budget.position.column}"
+            self.block.locals += [
+                Variable(instance, "TON", comment=comment),
+                Variable(passed, "BOOL", comment="the budget is spent"),
+            ]
+            timer = Timer(None, instance, passed, time_literal(seconds(budget)))
+            self.timers.setdefault(None, []).append(timer)
+
+    def _budget_branches(
+        self, node: Node | None, stop: list[str], waiting: list[str]
+    ) -> list[Branch]:
+        """The statechart's budget spent, if it has one: what runs is stopped, every state
+        left, and the statechart ends with ``timeout``. It is the outermost way out, so the
+        last one a scan takes."""
+        timer = next((t for t in self.timers.get(None, []) if t.transition is None), None)
+        if timer is None:
+            return []
+        exits = stop + (self._exits(node.chain()) if node else [])
+        condition = [f"{timer.instance}.Q", f"NOT {timer.passed}", *waiting]
+        return [Branch(condition, [*exits, f"{timer.passed} := TRUE;"], self._exit("timeout"))]
 
     def _timer(
-        self, owner: Node | None, transition: ast.Transition | ast.InternalTransition
+        self, owner: Node | None, transition: ast.Transition | ast.InternalTransition | None
     ) -> Timer:
         """The timer of ``transition``, a time event of ``owner`` (None: the statechart)."""
         timers = self.timers[id(owner) if owner else None]

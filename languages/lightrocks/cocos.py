@@ -464,7 +464,6 @@ def outcomes_handled(context: object) -> Iterator[Finding]:
         leaving: dict[str, list[ast.Transition]] = {}
         for transition in region.transitions:
             leaving.setdefault(transition.source, []).append(transition)
-        timeouts = {n for n, ts in leaving.items() if any(t.stimulus == "timeout" for t in ts)}
         for name, info in region.states.items():
             outcomes = info.outcomes
             if outcomes is None or info.state.is_final:
@@ -473,22 +472,39 @@ def outcomes_handled(context: object) -> Iterator[Finding]:
             handled = {t.stimulus for t in transitions}
             if any(not t.stimulus for t in transitions):
                 outcomes = ()  # a completion transition takes every declared outcome
-            for outcome in (*outcomes, *_builtin_outcomes(info, timeouts)):
+            for outcome in (*outcomes, *_builtin_outcomes(info, leaving)):
                 if outcome not in handled:
                     yield (
                         info.state.position,
                         f"outcome '{outcome}' of '{name}' is not handled: it ends "
                         f"'{region.name}' with 'error'",
-                        "",
+                        _handler_hint(name, outcome, leaving),
                     )
 
 
-def _builtin_outcomes(info: StateInfo, timeouts: set[str]) -> tuple[str, ...]:
-    """``timeout`` of an action child, where its region handles the timeout of another
-    action child: the region deals with timeouts, so one left out is an oversight. (An
-    unhandled ``error`` ends the parent with ``error``: that is its handling.)"""
-    action = info.imported is not None and info.imported.layer == "action"
-    return ("timeout",) if action and timeouts - {info.name} else ()
+def _builtin_outcomes(info: StateInfo, leaving: dict[str, list[ast.Transition]]) -> list[str]:
+    """The built-in outcomes a child handles as it handles declared ones: ``timeout`` where
+    the statechart it imports sets its own budget (``<<timeout>>``: a budget written down is
+    there to be reached), and ``error`` where the region handles the ``error`` of another
+    child (the region deals with errors, so one left out is an oversight). Elsewhere both go
+    to the parent as ``error``, by design: a device's or the default budget is a safety
+    net, and an error ends what it interrupts."""
+    found = []
+    if info.imported is not None and info.imported.budget is not None:
+        found.append("timeout")
+    if any(t.stimulus == "error" for s, ts in leaving.items() if s != info.name for t in ts):
+        found.append("error")
+    return found
+
+
+def _handler_hint(name: str, outcome: str, leaving: dict[str, list[ast.Transition]]) -> str:
+    """The fix where a sibling shows it: handle the outcome as the sibling does."""
+    for source, transitions in leaving.items():
+        for transition in transitions:
+            target = transition.target
+            if source != name and transition.stimulus == outcome and target not in ("", name):
+                return f"add the transition '{name} -> {target} {outcome};'"
+    return ""
 
 
 @coco("LR0210", Severity.ERROR, "no cycle of <<import>> and <<extends>>")

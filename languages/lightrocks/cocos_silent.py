@@ -25,7 +25,8 @@ EFFECTIVE = {
     "device": {"timeout", "concurrent"},
     "cell": {"scene"},
 }
-"""Where each known stereotype has an effect; ``timeout`` on a statechart only on actions."""
+"""Where each known stereotype has an effect: ``timeout`` on a statechart is an action's
+command budget, and bounds a skill, task or plain statechart as a whole."""
 KNOWN = set().union(*EFFECTIVE.values()) | {"import", "scene"}
 
 
@@ -114,10 +115,7 @@ def _misplaced(
     for stereotype in stereotypes:
         if stereotype.name not in KNOWN:
             continue  # unknown stereotypes are LR0212's
-        effective = stereotype.name in EFFECTIVE[kind]
-        if effective and stereotype.name == "timeout" and kind == "statechart":
-            effective = component is not None and component.layer == "action"
-        if not effective:
+        if stereotype.name not in EFFECTIVE[kind]:
             layer = component.layer if component is not None else None
             where = f"a {layer or kind}"
             yield (
@@ -129,7 +127,7 @@ def _misplaced(
 
 def _fix(name: str) -> str:
     return {
-        "timeout": "a time budget belongs on an <<action>> or a device",
+        "timeout": "a time budget belongs on a statechart or a device",
         "scene": "a scene belongs on a cell",
         "concurrent": "<<concurrent>> belongs on a device",
         "import": "<<import>> belongs on a state",

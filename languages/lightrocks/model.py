@@ -116,6 +116,15 @@ class Component:
             return layers[0].name
         return self.base.layer if self.base is not None else None
 
+    @property
+    def budget(self) -> ast.Stereotype | None:
+        """The ``<<timeout>>`` of this statechart or of the one it extends: an action's
+        command budget, the time a skill, task or plain statechart may take as a whole."""
+        found = ast.stereotype(self.statechart.stereotypes, "timeout")
+        if found is None and self.base is not None:
+            return self.base.budget
+        return found
+
 
 class ModelSet:
     """All components of a workspace, built on demand and cached by qualified name."""

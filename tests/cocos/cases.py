@@ -351,7 +351,7 @@ CASES: list[Case] = [
                 "  go -> PickPart;",
                 '  @@<<import="actions.Move">> state Nudge;\n'
                 "  go -> PickPart;\n  PickPart -> Nudge error;\n  Nudge -> failed done;\n"
-                "  Nudge -> failed blocked;",
+                "  Nudge -> failed blocked;\n  Nudge -> failed error;",
             )
         },
         message="a task cannot use the action 'Move'",

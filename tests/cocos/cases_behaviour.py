@@ -3,7 +3,7 @@ judged by the SMT solver over the declared ranges of sensors and attributes."""
 
 from __future__ import annotations
 
-from cocos.cases import BASE, CELL, DEVICES, MOVE, PICK, Case, replace
+from cocos.cases import BASE, CELL, DEVICES, JOB, MOVE, PICK, Case, replace
 
 RANGED = replace(
     replace(DEVICES, "sensor Force force;", "sensor Force force in 0 N .. 100 N;"),
@@ -29,6 +29,7 @@ TWICE = replace(
 )
 
 OTHER_MOVE = replace(MOVE, "package actions;", "package more;")
+BUDGETED = replace(MOVE, "<<action>>", '<<action, timeout="5 s">>')
 REACHING = replace(
     DEVICES,
     "  sensor Boolean done;",
@@ -49,7 +50,11 @@ import cell.Cell;
   end condition blocked [arm.wrench.force.z > 5 N];
 }
 """
-PLAUSIBLE = {"robots/Devices.lrd": REACHING, "actions/Move.lr": REACH}
+PLAUSIBLE = {
+    "robots/Devices.lrd": REACHING,
+    "actions/Move.lr": REACH,
+    "skills/Pick.lr": _pick("  Reach -> picked done;\n  Reach -> failed timeout;\n"),
+}
 
 BEHAVIOUR_CASES: list[Case] = [
     Case(
@@ -120,9 +125,22 @@ BEHAVIOUR_CASES: list[Case] = [
     ),
     Case(
         "LR0221",
-        ok={},
-        bad={"skills/Pick.lr": replace(PICK, "<<skill>>", '<<skill, @@timeout="3 s">>')},
-        message="<<timeout>> has no effect on a skill",
+        ok={
+            "skills/Pick.lr": replace(PICK, "<<skill>>", '<<skill, timeout="3 s">>'),
+            "tasks/Job.lr": replace(
+                JOB,
+                "  PickPart -> failed failed;\n",
+                "  PickPart -> failed failed;\n  PickPart -> failed timeout;\n",
+            ),
+        },
+        bad={
+            "skills/Pick.lr": replace(
+                PICK,
+                '<<import="Move">> state Reach',
+                '<<import="Move", @@timeout="3 s">> state Reach',
+            )
+        },
+        message="<<timeout>> has no effect on a state",
     ),
     Case(
         "LR0221",
@@ -138,6 +156,7 @@ BEHAVIOUR_CASES: list[Case] = [
     Case(
         "LR0209",
         ok={
+            "actions/Move.lr": BUDGETED,
             "skills/Pick.lr": replace(
                 replace(
                     TWICE,
@@ -146,14 +165,15 @@ BEHAVIOUR_CASES: list[Case] = [
                 ),
                 "  Again -> failed blocked;\n",
                 "  Again -> failed blocked;\n  Again -> failed timeout;\n",
-            ).replace("Reach -> picked done;", "Reach -> Again done;")
+            ).replace("Reach -> picked done;", "Reach -> Again done;"),
         },
         bad={
+            "actions/Move.lr": BUDGETED,
             "skills/Pick.lr": replace(
                 TWICE,
                 "state Reach(x = 5 mm);",
                 'state Reach(x = 5 mm);\n  @@<<import="Move">> state Again;',
-            ).replace("Reach -> picked done;", "Reach -> Again done;")
+            ).replace("Reach -> picked done;", "Reach -> Again done;"),
         },
         message="outcome 'timeout' of 'Again' is not handled",
         variant="timeout",

@@ -15,8 +15,17 @@ FORCED_MOVE = replace(
 SAFETY_CASES: list[Case] = [
     Case(
         "LR0501",
-        ok={"actions/Move.lr": replace(MOVE, "<<action>>", '<<action, timeout="8 s">>')},
+        ok={
+            "actions/Move.lr": replace(MOVE, "<<action>>", '<<action, timeout="8 s">>'),
+            # a budget written down is an outcome to handle (LR0209)
+            "skills/Pick.lr": replace(
+                PICK,
+                "  Reach -> failed blocked;\n",
+                "  Reach -> failed blocked;\n  Reach -> failed timeout;\n",
+            ),
+        },
         bad={"actions/Move.lr": replace(MOVE, "<<action>>", '<<action, @@timeout="8 mm">>')},
+        also=frozenset({"LR0209"}),  # a budget, if not a valid one, is an outcome to handle
         message="timeout '8 mm' is not a duration",
         hint="time unit",
     ),

@@ -118,6 +118,8 @@ CONSTRUCTS = [
          "move,toggle,move,toggle,toggle,move,quit"),
         ("history of the state a transition leaves", "Rewind",
          "next,again,back,again,next,again,quit"),
+        ("a budget ends a skill", "Oven", "quick,+900ms,slow,+1100ms,reset,quit"),
+        ("a budget ties with an inner time event", "Oven", "tight,+1100ms,quick,+500ms,quit"),
     ]
 ] + [
     # Regions of a task: the arm snaps a terminal while the camera looks ahead. Only faults
