@@ -90,3 +90,110 @@ def test_a_name_must_be_an_identifier() -> None:
         edits.add_state("two words", "Retreat")
     with pytest.raises(edits.EditError, match="is not a name"):
         edits.add_transition("A", "B", "a; b")
+
+
+PLAIN = ROOT / "examples" / "din_rail" / "tasks" / "PlugTerminal.lr"
+
+
+def test_an_action_given_to_a_transition_keeps_the_comment_of_its_line() -> None:
+    change = edits.set_transition("BringToRail", "failed", 0, "blocked", "", "terminal.pushes = 1;")
+    added = edit(PLAIN, edits.at([], change))
+    assert (
+        "  BringToRail -> failed blocked / { terminal.pushes = 1; }; "
+        "// the terminal stays in the hand for the operator\n" in added
+    )
+    assert added.count("//") == PLAIN.read_text().count("//")
+    back = edit(
+        PLAIN,
+        edits.at([], edits.set_transition("BringToRail", "failed", 0, "blocked", "", "")),
+        added,
+    )
+    assert back == PLAIN.read_text()
+
+
+def test_a_new_transition_with_a_block_takes_no_comment_of_the_file_into_it() -> None:
+    text = PLAIN.read_text().replace(
+        "  Withdraw -> failed retreated;\n", "  Withdraw -> failed retreated;\n  // the end\n"
+    )
+    change = edits.add_transition(
+        "LetGo", "failed", "blocked", "terminal.latched", "a = 1;\nb = 2;"
+    )
+    added = edit(PLAIN, edits.at([], change), text)
+    assert added.endswith(
+        "  LetGo -> failed [terminal.latched] blocked / {\n    a = 1;\n    b = 2;\n  };\n"
+        "  // the end\n}\n"
+    )
+
+
+def test_the_composition_forms_write_what_the_shipped_task_says() -> None:
+    """A task composed by the forms alone prints as the shipped one, comments aside."""
+    shipped = ROOT / "examples" / "din_rail" / "tasks" / "AssembleRail.lr"
+    text = edits.new_chart("din_rail.tasks", "AssembleRail", "task", ["din_rail.cell.RailCell"])
+    assert text == (
+        "package din_rail.tasks;\n\nimport din_rail.cell.RailCell;\n\n"
+        "<<task>> statechart AssembleRail { }\n"
+    )
+    steps = [
+        edits.set_parameters([("Length", "across", "0 mm"), ("Length", "clearance", "10mm")]),
+        edits.add_condition("start", "go"),
+        edits.add_condition("end", "assembled"),
+        edits.add_condition("end", "failed"),
+    ]
+    for number, slot in ((1, "-70 mm"), (2, "0 mm"), (3, "70 mm")):
+        steps += [
+            edits.add_state(f"PlugTerminal{number}", "PlugTerminal"),
+            edits.set_arguments(
+                f"PlugTerminal{number}",
+                [("terminal", f"terminal{number}"), ("slot", slot), ("grip", " "),
+                 ("across", "across"), ("clearance", "clearance")],
+            ),
+        ]  # fmt: skip
+    steps += [
+        edits.add_transition("go", "PlugTerminal1", ""),
+        edits.add_transition("PlugTerminal1", "PlugTerminal2", "plugged"),
+        edits.add_transition("PlugTerminal2", "PlugTerminal3", "plugged"),
+        edits.add_transition("PlugTerminal3", "assembled", "plugged"),
+    ]
+    steps += [edits.add_transition(f"PlugTerminal{n}", "failed", "failed") for n in (1, 2, 3)]
+    for step in steps:
+        text = edit(shipped, edits.at([], step), text)
+    composed = parse_statechart(text, "x.lr")
+    assert composed.statechart == parse_statechart(shipped.read_text(), "x.lr").statechart
+
+
+def test_parameters_keep_their_comments_and_a_condition_goes_before_the_states() -> None:
+    shipped = ROOT / "examples" / "din_rail" / "tasks" / "AssembleRail.lr"
+    rows = [("Length", "across", "0 mm"), ("Length", "clearance", "12 mm"), ("Integer", "n", "")]
+    changed = edit(shipped, edits.at([], edits.set_parameters(rows)))
+    assert (
+        "    Length clearance = 12 mm; // terminal above its latched pose where the careful "
+        "descent starts\n"
+    ) in changed
+    assert "    Length across = 0 mm;     // set-down offset across the rail" in changed
+    assert "    Integer n;\n  }" in changed
+    removed = edit(shipped, edits.at([], edits.set_parameters([])))
+    assert "parameters" not in removed
+    assert "\n  // set-down offset across the rail from its localized centre line\n" in removed
+    plain = "package p;\n\nstatechart C {\n  state A;\n}\n"
+    added = edits.edited(plain, "C.lr", edits.at([], edits.add_condition("end", "done", "true")))
+    assert added == "package p;\n\nstatechart C {\n  end condition done [true];\n\n  state A;\n}\n"
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda: edits.set_arguments("A", [("slot", "70 +")]), "argument 'slot': syntax error"),
+        (lambda: edits.set_arguments("A", [("x", "1"), ("x", "2")]), "given twice"),
+        (lambda: edits.add_transition("A", "B", "", "a >", ""), "guard: syntax error"),
+        (lambda: edits.add_transition("A", "B", "", "", "a = ;"), "line 1, column 5"),
+        (lambda: edits.add_transition("A", "B", "", "", "a = 1"), "action: incomplete"),
+        (lambda: edits.set_parameters([("Length m", "a", "")]), "not a type name"),
+        (lambda: edits.set_parameters([("Length", "a", ""), ("Real", "a", "")]), "one name"),
+        (lambda: edits.add_condition("middle", "x"), "'start' or 'end'"),
+        (lambda: edits.new_chart("a b", "C", "task"), "not a package name"),
+        (lambda: edits.new_chart("p", "C", "robot"), "none of task"),
+    ],
+)
+def test_form_texts_are_read_by_the_language_s_parser(make, message: str) -> None:
+    with pytest.raises(edits.EditError, match=message):
+        make()

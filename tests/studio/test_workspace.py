@@ -83,7 +83,11 @@ def test_a_file_changed_on_disk_is_seen_and_an_edit_on_the_old_version_refused(
     ("level", "request_", "message"),
     [
         (AHEAD, {"op": "move", "state": "go", "steps": 1}, "not in a chain"),
-        (AHEAD, {"op": "rename"}, "no edit 'rename'"),
+        (AHEAD, {"op": "teleport"}, "no edit 'teleport'"),
+        (AHEAD, {"op": "move", "state": "PlugTerminal2", "steps": "1"}, "whole number"),
+        (AHEAD, {"op": "set-arguments", "state": "PlugTerminal2", "arguments": "x"}, "a list"),
+        (AHEAD, {"op": "rename", "element": "PlugTerminal2", "to": "PlugTerminal3"}, "taken"),
+        (AHEAD, {"op": "rename", "element": "go->PlugTerminal1", "to": "X"}, "no state"),
         ("other.Chart", {"op": "delete", "element": "PlugTerminal1"}, "not one of"),
         (AHEAD, {"op": "add-transition", "source": "A/B", "target": "C"}, "one region"),
     ],
@@ -100,3 +104,82 @@ def test_outcomes_of_the_boxes_of_each_level(models: Path) -> None:
     found = workspace.outcomes(Studio([models]).component(PLUG))
     assert found[PLUG]["PressOn"] == ["Latched", "Jammed"]
     assert found[f"{PLUG}/PressOn"]["Camera/LookAhead"] == ["located", "notFound"]
+
+
+def test_undo_and_redo_and_an_undo_refused_after_a_change_on_disk(models: Path) -> None:
+    studio = Studio([models])
+    ahead = file_of(models, AHEAD)
+    original = ahead.read_text()
+    move = {"op": "move", "state": "PlugTerminal3", "steps": -1}
+    studio.edit(AHEAD, studio.state(AHEAD)["version"], AHEAD, move)
+    moved = ahead.read_text()
+    assert studio.history() == {"undo": "move PlugTerminal3", "redo": ""}
+    assert studio.undo() == "move PlugTerminal3"
+    assert ahead.read_text() == original
+    assert studio.history() == {"undo": "", "redo": "move PlugTerminal3"}
+    assert studio.redo() == "move PlugTerminal3"
+    assert ahead.read_text() == moved
+    outside = moved.replace("PlugTerminal3 -> failed failed;\n", "")
+    ahead.write_text(outside)  # an editor changes the file: undo would lose that
+    with pytest.raises(Conflict, match="changed on disk since; nothing was written"):
+        studio.undo()
+    assert ahead.read_text() == outside
+    with pytest.raises(EditError, match="nothing to redo"):
+        studio.redo()
+
+
+def test_a_preview_checks_the_edit_with_the_language_s_check_and_writes_nothing(
+    models: Path,
+) -> None:
+    studio = Studio([models])
+    before = file_of(models, AHEAD).read_text()
+    arguments = [["terminal", "terminal2"], ["slot", "0 N"], ["ahead", "terminal3"]]
+    request = {"op": "set-arguments", "state": "PlugTerminal2", "arguments": arguments}
+    found = studio.preview(AHEAD, studio.state(AHEAD)["version"], AHEAD, request)["findings"]
+    assert [(f["code"], f["element"], f["new"]) for f in found] == [
+        ("LR0304", "PlugTerminal2", True)
+    ]
+    assert "expected Length" in found[0]["message"]
+    assert file_of(models, AHEAD).read_text() == before
+    assert studio.history()["undo"] == ""
+
+
+def test_a_rename_changes_every_file_that_names_it_and_undo_takes_it_back(models: Path) -> None:
+    studio = Studio([models])
+    plug = file_of(models, PLUG)
+    texts = {f: f.read_text() for f in models.rglob("*.lr")}
+    request = {"op": "rename", "element": "", "to": "PlugAhead"}
+    studio.edit(PLUG, studio.state(PLUG)["version"], PLUG, request)
+    assert not plug.exists()
+    moved = plug.with_name("PlugAhead.lr")
+    assert "<<task>> statechart PlugAhead {" in moved.read_text()
+    ahead = file_of(models, AHEAD).read_text()
+    assert '<<import="PlugAhead">> state PlugTerminal1(terminal = terminal1,\n' in ahead
+    assert "                                          slot = -70 mm," in ahead  # aligned again
+    assert studio.state("din_rail_ahead.tasks.PlugAhead")["findings"] == []
+    studio.undo()
+    assert {f: f.read_text() for f in models.rglob("*.lr")} == texts
+
+
+def test_a_state_renamed_on_a_level_below(models: Path) -> None:
+    studio = Studio([models])
+    request = {"op": "rename", "element": "Arm/Snap", "to": "Click"}
+    studio.edit(PLUG, studio.state(PLUG)["version"], f"{PLUG}/PressOn", request)
+    text = file_of(models, PLUG).read_text()
+    assert "Click -> Jammed jammed;" in text and "Snap" not in text.replace("SnapOn", "")
+    assert studio.state(PLUG)["findings"] == []
+
+
+def test_a_new_chart_is_created_empty_and_refused_when_it_is_there(models: Path) -> None:
+    studio = Studio([models])
+    catalogue = studio.catalogue()
+    assert "din_rail.cell.RailCell" in catalogue["cells"]
+    assert "din_rail.tasks" in catalogue["packages"]
+    name = studio.create("din_rail.tasks", "Composed", "task", "din_rail.cell.RailCell")
+    assert name == "din_rail.tasks.Composed"
+    assert file_of(models, name).read_text().endswith("<<task>> statechart Composed { }\n")
+    assert studio.state(name)["findings"] == []
+    with pytest.raises(EditError, match="is there already"):
+        studio.create("din_rail.tasks", "Composed", "task")
+    studio.undo()
+    assert not file_of(models, name).exists()
