@@ -22,6 +22,7 @@ from lightrocks.app.lsp.hover import hover as describe
 from lightrocks.app.lsp.index import Index
 from lightrocks.app.lsp.stdio import serve
 from lightrocks.app.lsp.text import Text
+from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import parsecache
 from lightrocks.workbench.diagnostics import Diagnostic
@@ -188,7 +189,21 @@ def semantic_tokens(ls: LightRocksServer, params: lsp.SemanticTokensParams) -> l
     lsp.CodeActionOptions(code_action_kinds=[lsp.CodeActionKind.QuickFix]),
 )
 def code_actions(ls: LightRocksServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction]:
-    return diagnostics.quick_fixes(params.text_document.uri, params.context.diagnostics)
+    uri = params.text_document.uri
+    return diagnostics.quick_fixes(uri, params.context.diagnostics, _unit(ls, _path(uri)))
+
+
+def _unit(ls: LightRocksServer, path: Path) -> ast.StatechartUnit | None:
+    """The document's statechart as it reads now (memory cache), or None where it does
+    not parse or is no statechart."""
+    language = language_for(path.suffix)
+    if language is None:
+        return None
+    try:
+        unit = parsecache.parse(language, ls.text(path).source, str(path))
+    except SyntaxProblem:
+        return None
+    return unit if isinstance(unit, ast.StatechartUnit) else None
 
 
 def main() -> int:

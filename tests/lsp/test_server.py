@@ -10,6 +10,7 @@ from lsprotocol import types as lsp
 from pytest_lsp import LanguageClient
 
 RETREAT = Path("screwing") / "skills" / "Retreat.lr"
+SNAP = Path("din_rail") / "skills" / "SnapOnRail.lr"
 LIFT = Path("screwing") / "actions" / "Lift.lr"
 
 
@@ -31,6 +32,30 @@ async def test_a_misspelled_outcome_is_reported_where_it_is_written_with_a_fix(
         )
     )
     assert list(fix.edit.changes[uri]) == [lsp.TextEdit(finding.range, "lifted")]
+
+
+@pytest.mark.asyncio
+async def test_an_unhandled_timeout_is_fixed_as_a_sibling_handles_it(
+    client: LanguageClient, examples: Path
+) -> None:
+    shipped = (examples / SNAP).read_text(encoding="utf-8")
+    text = shipped.replace("  Press -> GiveUp timeout;\n", "")
+    uri = await open_file(client, examples / SNAP, text)
+    [finding] = [d for d in client.diagnostics[uri] if d.code == "LR0209"]
+    assert finding.range.start == cursor(text, '<<import="Seat">> state Press;', "<<")
+    [fix] = await client.text_document_code_action_async(
+        lsp.CodeActionParams(
+            document(uri), finding.range, lsp.CodeActionContext(diagnostics=[finding])
+        )
+    )
+    [edit] = fix.edit.changes[uri]
+    assert edit.range.start == cursor(text, "Press -> latched seated", "Press")
+    lines = text.split("\n")
+    row, column = edit.range.start.line, edit.range.start.character
+    lines[row] = lines[row][:column] + edit.new_text + lines[row][column:]
+    await change(client, uri, 2, "\n".join(lines))
+    assert not [d for d in client.diagnostics[uri] if d.code == "LR0209"]
+    assert "  Press -> GiveUp timeout;\n  Press -> latched seated" in "\n".join(lines)
 
 
 @pytest.mark.asyncio
