@@ -12,7 +12,14 @@ import os
 from datetime import UTC, datetime
 
 from lightrocks.generators.plcopen.document import project
-from lightrocks.generators.sfc_iec61131 import build_unit, interval_option, unit_files
+from lightrocks.generators.sfc_iec61131 import (
+    build_unit,
+    checked_text,
+    environment_of,
+    interval_option,
+    unit_files,
+)
+from lightrocks.generators.sfc_iec61131.extensions import Extensions
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench.generators import GenerationError, GenerationRequest
 
@@ -29,12 +36,16 @@ class PlcopenGenerator:
     description = "PLCopen TC6 XML v2.01 with graphical SFC (option interval_ms=1: the cycle)"
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
+        environment = environment_of(request)  # for syntax of language extensions
+        extensions = Extensions(environment)
         interval = interval_option(request)
         typing = analysis(request.context).typing
         created = creation_time()
         files: dict[str, str] = {}
         for name, top in unit_files(request, ".xml").items():
-            document = project(build_unit(top, typing), interval, created)
+            unit = build_unit(top, typing, extensions)
+            checked_text(environment, unit, interval)  # the POUs pass the SFC checker
+            document = project(unit, interval, created)
             buffer = io.BytesIO()
             document.write(buffer, encoding="utf-8", xml_declaration=True)
             files[name] = buffer.getvalue().decode("utf-8") + "\n"

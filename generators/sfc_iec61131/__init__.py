@@ -6,16 +6,20 @@ import itertools
 from collections import Counter
 from pathlib import Path
 
+import jinja2
+
 from lightrocks.generators.outputs import chart_stems, distinct
 from lightrocks.generators.selection import is_action, selected
 from lightrocks.generators.sfc_iec61131.checker import check_sfc
 from lightrocks.generators.sfc_iec61131.expressions import time_literal
+from lightrocks.generators.sfc_iec61131.extensions import Extensions
 from lightrocks.generators.sfc_iec61131.frames import FRAME_FIELDS, FUNCTIONS
 from lightrocks.generators.sfc_iec61131.ir import Unit
 from lightrocks.generators.sfc_iec61131.unit import UnitBuilder
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.languages.lightrocks.typing import Typing
+from lightrocks.workbench.extensions import language_extensions
 from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
 
 TEMPLATES = Path(__file__).parent / "templates"
@@ -34,11 +38,34 @@ def prioritize(unit: Unit) -> None:
                 transition.priority = next(numbers)
 
 
-def build_unit(top: Component, typing: Typing) -> Unit:
-    """The blocks of ``top``'s compilation unit, with their transitions prioritized."""
-    unit = UnitBuilder(top, typing).build()
+def build_unit(top: Component, typing: Typing, extensions: Extensions | None = None) -> Unit:
+    """The blocks of ``top``'s compilation unit, with their transitions prioritized; syntax
+    of language extensions through ``extensions`` (without: refused)."""
+    unit = UnitBuilder(top, typing, extensions).build()
     prioritize(unit)
     return unit
+
+
+def environment_of(request: GenerationRequest) -> jinja2.Environment:
+    """The SFC templates: the user's first, then the built-in ones, then those of language
+    extensions (``sfc/<Node>.jinja``, shared with the PLCopen target)."""
+    folders = [e.templates for e in language_extensions() if e.templates is not None]
+    return template_environment(TEMPLATES, request.templates, folders)
+
+
+def checked_text(environment: jinja2.Environment, unit: Unit, interval: str) -> str:
+    """The unit as SFC text, which must pass the checker (a template can write anything)."""
+    text = environment.get_template("unit.st.jinja").render(
+        unit=unit,
+        interval=interval,
+        frames=FUNCTIONS,
+        frame_fields=FRAME_FIELDS,
+    )
+    problems = check_sfc(text)
+    if problems:
+        listing = "\n".join(f"  {p}" for p in problems)
+        raise GenerationError(f"generated SFC of {unit.top.name} fails the check:\n{listing}")
+    return text
 
 
 def interval_option(request: GenerationRequest) -> str:
@@ -66,23 +93,13 @@ class SfcGenerator:
     description = "IEC 61131-3 textual SFC for PLCs (option interval_ms=1: the task cycle)"
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
-        environment = template_environment(TEMPLATES, request.templates)
+        environment = environment_of(request)
+        extensions = Extensions(environment)
         interval = interval_option(request)
         typing = analysis(request.context).typing
         files: dict[str, str] = {}
         for name, top in unit_files(request, ".st").items():
-            unit = build_unit(top, typing)
-            text = environment.get_template("unit.st.jinja").render(
-                unit=unit,
-                interval=interval,
-                frames=FUNCTIONS,
-                frame_fields=FRAME_FIELDS,
-            )
-            problems = check_sfc(text)
-            if problems:
-                listing = "\n".join(f"  {p}" for p in problems)
-                raise GenerationError(f"generated SFC of {top.name} fails the check:\n{listing}")
-            files[name] = text
+            files[name] = checked_text(environment, build_unit(top, typing, extensions), interval)
         return files
 
 

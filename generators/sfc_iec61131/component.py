@@ -26,7 +26,7 @@ from lightrocks.generators.sfc_iec61131.timers import TimeEvents, Timer
 from lightrocks.languages.domain.types import DeviceT, ObjectT
 from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, Component, Region
 from lightrocks.metamodel import ast
-from lightrocks.workbench.generators import GenerationError, refuse_extensions
+from lightrocks.workbench.generators import GenerationError
 
 if TYPE_CHECKING:
     from lightrocks.generators.sfc_iec61131.unit import UnitBuilder
@@ -58,9 +58,13 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
         self.component = component
         self.region = component.region
         for layer in _lineage(component):
-            refuse_extensions("SFC", layer.unit)
+            unit.extensions.refuse_unmapped(layer.unit)
         layer = component.layer or "statechart"
-        block = Block(unit.globals.claim(component.name), f"<<{layer}>> {component.qualified_name}")
+        documented = unit.extensions.documentation(
+            element for region in self.region.regions() for element in region.extensions
+        )
+        heading = f"<<{layer}>> {component.qualified_name}"
+        block = Block(unit.globals.claim(component.name), "\n".join([heading, *documented]))
         super().__init__(block, unit.globals.scope())
         self.scope = self._scope(self.region, {})
         self.events: dict[str, str] = {}
@@ -83,6 +87,7 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
             lambda e: self.unit.typing.infer(e, env),
             sensor,
             self.unit.globals.field,
+            self.unit.extensions.expression,
         )
 
     def build(self) -> Block:
@@ -164,6 +169,8 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
         return [line for s in statements for line in self._statement(s, scope or self.scope)]
 
     def _statement(self, statement: ast.Statement, scope: Scope) -> list[str]:
+        if isinstance(statement, ast.ExtensionNode):
+            return self.unit.extensions.statement(statement, scope)
         if isinstance(statement, ast.Assignment):
             return scope.assign(statement.target, statement.value)
         return [f"{scope.compile(statement.expression)};"]

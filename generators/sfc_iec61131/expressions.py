@@ -185,6 +185,8 @@ class Scope:
     infer: Callable[[ast.Expression], Type]
     sensor: Callable[[DeviceT, str], str]
     field: Callable[[str], str]
+    extension: Callable[[ast.ExtensionNode, Scope], str] | None = None
+    """The ST text of an expression a language extension adds (see ``.extensions``)."""
 
     def compile(self, expression: ast.Expression, declared: Type | None = None) -> str:
         """The ST text of ``expression``; as the ST number type of ``declared`` when given."""
@@ -250,6 +252,8 @@ class Scope:
                 return f"FRAME_MUL({self.compile(left)}, {self.compile(right)})"
             case ast.Binary(operator=operator, left=left, right=right):
                 return self._binary(operator, left, right)
+            case ast.ExtensionNode() if self.extension is not None:
+                return self.extension(expression, self)
             case ast.VectorLiteral():
                 raise GenerationError(
                     f"{expression.position}: the SFC target writes a vector literal where it "

@@ -13,6 +13,7 @@ from lightrocks.generators.outputs import shortened
 from lightrocks.generators.selection import is_action, reachable
 from lightrocks.generators.sfc_iec61131.component import ComponentBuilder
 from lightrocks.generators.sfc_iec61131.expressions import initial_value, literal
+from lightrocks.generators.sfc_iec61131.extensions import Extensions
 from lightrocks.generators.sfc_iec61131.ir import Block, TypeDeclaration, Unit, Variable
 from lightrocks.generators.sfc_iec61131.names import Namer
 from lightrocks.languages.domain.types import (
@@ -43,9 +44,12 @@ FRAME_FUNCTIONS = ("FRAME_MUL", "ROT_X", "ROT_Y", "ROT_Z", "TRANSL")
 class UnitBuilder:
     """Builds the unit for one top component; names are claimed in a fixed order."""
 
-    def __init__(self, top: Component, typing: Typing) -> None:
+    def __init__(
+        self, top: Component, typing: Typing, extensions: Extensions | None = None
+    ) -> None:
         self.top = top
         self.typing = typing
+        self.extensions = extensions or Extensions()
         self.globals = Namer()
         for name in ("pose", "x", "y", "z", "xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"):
             self.globals.field(name)
