@@ -1,5 +1,6 @@
 """The PLCopen target judged by Beremiz: every generated project (examples, plant models,
-models at the target's edges) loads in Beremiz's PLCopen loader, its PLCopen-to-IEC
+models at the target's edges, the worked extension package's models with the package
+installed: ``extension_units``) loads in Beremiz's PLCopen loader, its PLCopen-to-IEC
 generator turns it into IEC text without a finding, and its headless build compiles that
 text with MatIEC (Beremiz's options) and gcc.
 
@@ -15,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from beremiz import Beremiz, beremiz, build, load
+from extension_units import extension_units
 from generation import EXAMPLES, ROOT
 from judges import missing
 from test_matiec_findings import _cases
@@ -38,8 +40,8 @@ def judge() -> Beremiz:
 
 @pytest.fixture(scope="module")
 def projects(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
-    """Every PLCopen project generated from the examples, the plant models and the models at
-    the target's edges (test_matiec_findings)."""
+    """Every PLCopen project generated from the examples, the plant models, the models at
+    the target's edges (test_matiec_findings) and the extension package's models."""
     out = tmp_path_factory.mktemp("plcopen")
     edges = tmp_path_factory.mktemp("edges")
     _cases(edges)
@@ -54,7 +56,7 @@ def projects(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_text(text, encoding="utf-8")
             written.append(target)
-    return written
+    return written + list(extension_units(tmp_path_factory).plcopen.values())
 
 
 def test_every_project_loads_and_generates_iec_in_beremiz(judge, projects, tally) -> None:
