@@ -64,7 +64,7 @@ def load(
     for file in files:
         loaded = workspace.load(file)
         if loaded is not None:
-            workspace.model_path.add_root(root_for(file, loaded.package))
+            workspace.model_path.add_root(root_for(loaded.path, loaded.package))
     for loaded in workspace.checked_units():
         workspace.scope(loaded)
     return CheckContext(workspace, diagnostics)

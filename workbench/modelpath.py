@@ -18,11 +18,17 @@ class ModelPath:
         for root in [*roots, LIBRARY]:
             unique[root.resolve()] = None
         self.roots = list(unique)
+        self._packages: dict[Path, list[str]] = {}  # of each file asked, while roots stay
 
     def add_root(self, root: Path) -> None:
+        """Add a folder the checked files imply (``root_for``); a check adds one per file,
+        mostly the same few, so a root already on the path costs no resolution."""
+        if root in self.roots:
+            return
         root = root.resolve()
         if root not in self.roots:
             self.roots.insert(len(self.roots) - 1, root)
+            self._packages.clear()
 
     def package_folders(self, package: str) -> Iterator[Path]:
         """Existing folders of ``package`` in model-path order."""
@@ -34,17 +40,21 @@ class ModelPath:
 
     def packages_of(self, file: Path) -> list[str]:
         """The packages a file can be in: one per root that contains it."""
-        file = file.resolve()
-        return [
-            ".".join(file.parent.relative_to(root).parts)
-            for root in self.roots
-            if file.is_relative_to(root)
-        ]
+        found = self._packages.get(file)
+        if found is None:
+            real = file.resolve()
+            found = self._packages[file] = [
+                ".".join(real.parent.relative_to(root).parts)
+                for root in self.roots
+                if real.is_relative_to(root)
+            ]
+        return found
 
 
 def root_for(file: Path, package: str) -> Path:
-    """The model-path root implied by a file and the package it declares."""
-    folder = file.resolve().parent
+    """The model-path root implied by a file (resolved, as loading leaves it) and the
+    package it declares."""
+    folder = file.parent
     depth = len(package.split(".")) if package else 0
     for _ in range(depth):
         if folder.parent == folder:
