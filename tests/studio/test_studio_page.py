@@ -231,3 +231,68 @@ def test_stale_edits_strangers_and_other_sites_are_refused(studio) -> None:
     other = {**move, "version": fresh, "state": "PlugTerminal3", "steps": -1}
     assert request(url, "edit", other, Origin="http://rebound.example")[0] == 403
     assert path.read_text() == changed
+
+
+def test_a_dry_run_is_started_stepped_and_watched_from_the_studio(
+    studio, browser, tmp_path: Path
+) -> None:
+    """The run is the monitor's (its stream and controls below run/), on the studio's own
+    diagram: paused at the start, stepped to the first terminal, which is highlighted,
+    resumed to the shipped outcome; a second run is aborted."""
+    from selenium.webdriver.support.ui import Select
+
+    page = Studio(browser, *studio)
+    Select(browser.find_element("id", "chart")).select_by_value("din_rail.tasks.AssembleRail")
+    page.until(lambda: page.element("AssembleRail/PlugTerminal2") is not None)
+    Select(browser.find_element("id", "run-adapter")).select_by_value("dryrun")
+    script = "examples/din_rail/assembled.dryrun.json"
+    page.until(lambda: browser.find_elements("css selector", f"#run-script [value='{script}']"))
+    Select(browser.find_element("id", "run-script")).select_by_value(script)
+    browser.find_element("id", "run-paused").click()
+    page.press("run-start")
+    page.until(lambda: page.text("run-status").startswith("paused"))
+    page.press("run-step")
+    page.until(lambda: "go->AssembleRail/PlugTerminal1" in page.text("run-status"))
+    page.press("run-step")
+    active = lambda: browser.find_element("id", "diagram").get_attribute("data-active")  # noqa: E731
+    page.until(lambda: active() == "AssembleRail/PlugTerminal1")
+    assert "current" in page.element("AssembleRail/PlugTerminal1").get_attribute("class")
+    page.screenshot(tmp_path / "studio-run.png")
+    page.press("run-resume")
+    page.until(lambda: page.text("run-status") == "outcome: assembled")
+    assert "finished assembled" in page.text("run-log")
+    assert browser.find_element("id", "run-monitor").get_attribute("href").endswith("/run/")
+
+    page.press("run-start")  # paused again: the box stays ticked
+    page.until(lambda: page.text("run-status").startswith("paused"))
+    page.press("run-abort")
+    page.until(lambda: page.text("run-status") == "outcome: preempted")
+    assert "aborted" in page.text("run-log")
+
+
+@pytest.mark.slow
+def test_a_simulation_started_from_the_studio_shows_the_cell_live(
+    studio, browser, tmp_path: Path
+) -> None:
+    """MuJoCo from the page: frames of the simulated cell (its offscreen renderer, as
+    ``--video`` draws them) shown beside the diagram while it runs; aborted safely."""
+    from selenium.webdriver.support.ui import Select
+
+    page = Studio(browser, *studio)
+    Select(browser.find_element("id", "chart")).select_by_value("din_rail.tasks.AssembleRail")
+    page.until(lambda: page.element("AssembleRail/PlugTerminal2") is not None)
+    page.until(lambda: browser.find_elements("css selector", "#run-adapter [value='mujoco']"))
+    Select(browser.find_element("id", "run-adapter")).select_by_value("mujoco")
+    page.press("run-start")
+    frame = lambda: browser.find_element("id", "run-view").get_attribute("data-frame")  # noqa: E731
+    page.until(lambda: frame() is not None)
+    first = frame()
+    width = "return document.getElementById('run-view').naturalWidth"
+    assert browser.execute_script(width) == 480
+    page.until(lambda: frame() != first)  # the next frame came
+    active = lambda: browser.find_element("id", "diagram").get_attribute("data-active")  # noqa: E731
+    page.until(lambda: active().startswith("AssembleRail/PlugTerminal1/"))  # followed down
+    page.until(lambda: page.browser.find_elements("css selector", "#diagram g.current"))
+    page.screenshot(tmp_path / "studio-simulation.png")
+    page.press("run-abort")
+    page.until(lambda: page.text("run-status") == "outcome: preempted")

@@ -260,11 +260,13 @@ async function refreshSide() {
   const palette = $("palette"), chosen = palette.value;
   palette.replaceChildren(...state.palette.map(p => new Option(`${p.name} (${p.layer || "plain"})`, p.name)));
   if (state.palette.some(p => p.name === chosen)) palette.value = chosen;
+  const simple = p => p.name.split(".").pop();
+  const twice = new Set(state.palette.map(simple).filter((n, i, all) => all.indexOf(n) !== i));
   $("palette-list").replaceChildren(...state.palette.map(p => {
     const item = document.createElement("li");
     item.dataset.chart = p.name;
     item.className = "chip";
-    item.textContent = p.name.split(".").pop();
+    item.textContent = twice.has(simple(p)) ? `${simple(p)} · ${p.name.split(".")[0]}` : simple(p);
     item.title = `${p.name} (${p.layer || "plain"})\nparameters: ` +
       (p.parameters.map(([t, n, d]) => `${t} ${n}${d ? " = " + d : ""}`).join(", ") || "none") +
       `\noutcomes: ${p.outcomes.join(", ") || "none"}`;
@@ -573,7 +575,7 @@ async function changed(change) {
   waiting = busy ? change : null;
   if (busy || change.stamp === stamp) return;
   await load(root, true);
-  say(`reloaded: ${change.files.join(", ")} changed on disk`);
+  say(`reloaded: ${change.files.join(", ") || "the files"} changed on disk`);
 }
 
 async function poll() {

@@ -1,0 +1,123 @@
+"""The studio's server in this process: bad input to every endpoint is refused with a clear
+error and writes nothing; a change on disk is pushed to an open page's socket."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("starlette", reason="the studio needs the 'monitor' extra")
+
+from lightrocks.app.studio.server import StudioServer
+from lightrocks.app.studio.workspace import Studio
+
+ROOT = Path(__file__).resolve().parents[2]
+AHEAD = "din_rail_ahead.tasks.AssembleRailAhead"
+
+
+@pytest.fixture(scope="module")
+def served(tmp_path_factory):
+    models = shutil.copytree(ROOT / "examples", tmp_path_factory.mktemp("studio") / "examples")
+    url = StudioServer(Studio([models])).serve()
+    return url, models
+
+
+def post(url: str, path: str, data: bytes | None) -> tuple[int, dict]:
+    base, _, query = url.partition("?")
+    call = urllib.request.Request(
+        f"{base.rstrip('/')}/{path}?{query}", data, {"Content-Type": "application/json"}
+    )
+    try:
+        with urllib.request.urlopen(call, timeout=60) as answer:
+            return answer.status, json.loads(answer.read())
+    except urllib.error.HTTPError as error:
+        return error.code, json.loads(error.read())
+
+
+def state(url: str) -> dict:
+    base, _, query = url.partition("?")
+    with urllib.request.urlopen(f"{base}state?{query}&chart={AHEAD}", timeout=60) as answer:
+        return json.loads(answer.read())
+
+
+def snapshot(models: Path) -> dict[Path, str]:
+    return {f: f.read_text() for f in models.rglob("*.lr*")}
+
+
+@pytest.mark.parametrize(
+    ("path", "body", "status", "message"),
+    [
+        ("edit", b"{not json", 400, "not JSON"),
+        ("edit", b"[1, 2]", 400, "not a JSON object"),
+        ("edit", {"version": None, "op": "move"}, 400, "its version"),
+        ("edit", {"op": "move", "state": "PlugTerminal3"}, 422, "missing 'steps'"),
+        ("edit", {"op": "move", "state": "PlugTerminal3", "steps": "x"}, 422, "whole number"),
+        ("edit", {"op": "add-state", "name": ["x"], "imports": "A"}, 422, "must be a text"),
+        ("edit", {"op": "add-state", "name": "A", "imports": 3}, 422, "must be a text"),
+        (
+            "edit",
+            {"op": "set-transition", "source": "go", "target": "PlugTerminal1", "guard": "1 +"},
+            422,
+            "guard: syntax error",
+        ),
+        ("edit", {"op": "set-parameters", "parameters": [["Length", "x"]]}, 422, "a list of"),
+        ("edit", {"op": "set-parameters", "parameters": [], "level": "x.Y"}, 422, "not one of"),
+        ("edit", {"op": "rename", "element": "PlugTerminal1", "to": "two words"}, 422, "name"),
+        ("edit", {"op": "rename", "element": "PlugTerminal1"}, 422, "missing 'to'"),
+        ("edit", {"op": "nothing"}, 422, "no edit 'nothing'"),
+        ("edit", {"op": "move", "chart": "no.Such", "state": "A", "steps": 1}, 422, "no.Such"),
+        ("preview", b"", 400, "not JSON"),
+        ("preview", {"op": "add-condition", "kind": "middle", "name": "x"}, 422, "'start'"),
+        ("history/undo", {}, 422, "nothing to undo"),
+        ("history/sideways", {}, 422, "no 'sideways'"),
+        ("history/undo", b"-", 400, "not JSON"),
+        ("new", {"package": "din_rail.tasks", "name": 3}, 400, "as texts"),
+        ("new", {"package": "din_rail.tasks", "name": "Bad Name"}, 422, "is not a name"),
+        ("new", {"package": "din_rail.tasks", "name": "PlugTerminal"}, 422, "there already"),
+        ("new", {"package": "../up", "name": "X"}, 422, "not a package name"),
+    ],
+)
+def test_bad_input_is_refused_with_a_reason_and_nothing_written(
+    served, path: str, body, status: int, message: str
+) -> None:
+    url, models = served
+    before = snapshot(models)
+    if isinstance(body, dict) and path in ("edit", "preview"):  # None: left out
+        known = {"chart": AHEAD, "version": state(url)["version"], "level": AHEAD}
+        body = {k: v for k, v in {**known, **body}.items() if v is not None}
+    data = json.dumps(body).encode() if isinstance(body, dict) else body
+    got, answer = post(url, path, data)
+    assert (got, message in answer.get("error", "")) == (status, True), answer
+    assert snapshot(models) == before
+
+
+def test_a_change_on_disk_is_pushed_to_an_open_page(served) -> None:
+    from websockets.sync.client import connect
+
+    url, models = served
+    base, _, query = url.partition("?")
+    path = models / "din_rail" / "tasks" / "PlugTerminal.lr"
+    with connect(f"{base.replace('http', 'ws')}events?{query}", open_timeout=30) as socket:
+        first = json.loads(socket.recv(timeout=30))
+        assert first == {"stamp": state(url)["stamp"], "files": []}
+        path.write_text(path.read_text() + "// touched\n")
+        news = json.loads(socket.recv(timeout=30))
+    assert news["files"] == ["examples/din_rail/tasks/PlugTerminal.lr"]
+    assert news["stamp"] == state(url)["stamp"]
+    path.write_text(path.read_text().removesuffix("// touched\n"))
+
+
+def test_a_token_less_socket_is_closed(served) -> None:
+    from websockets.exceptions import ConnectionClosed, InvalidStatus
+    from websockets.sync.client import connect
+
+    url, _ = served
+    base = url.partition("?")[0]
+    address = f"{base.replace('http', 'ws')}events"
+    with pytest.raises((ConnectionClosed, InvalidStatus)), connect(address) as socket:
+        socket.recv(timeout=30)
