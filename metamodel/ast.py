@@ -171,6 +171,14 @@ class ExpressionStatement:
 Statement = Assignment | ExpressionStatement | ExtensionNode
 
 
+def evaluated(statement: Statement) -> Expression | None:
+    """What a statement evaluates: an assignment's value, an expression statement's
+    expression; None for a statement of a language extension, which has its own fields."""
+    if isinstance(statement, Assignment):
+        return statement.value
+    return statement.expression if isinstance(statement, ExpressionStatement) else None
+
+
 # --- statecharts -------------------------------------------------------------------------
 
 

@@ -351,7 +351,7 @@ class Builder:
         if do is None or len(do.statements) != 1:
             raise GenerationError(f"{region.position}: an action needs exactly one do command")
         statement = do.statements[0]
-        call = statement.value if isinstance(statement, ast.Assignment) else statement.expression
+        call = ast.evaluated(statement)
         if not (isinstance(call, ast.Call) and isinstance(call.function, ast.Member)):
             raise GenerationError(f"{statement.position}: a do action must call a device command")
         device_name = call.function.target

@@ -113,7 +113,7 @@ class Children:
         lines that store its result, the device type and the device instance."""
         do = next(a for a in region.actions if a.kind == "do")
         statement = do.statements[0]
-        call = statement.value if isinstance(statement, ast.Assignment) else statement.expression
+        call = ast.evaluated(statement)
         if not (isinstance(call, ast.Call) and isinstance(call.function, ast.Member)):
             raise GenerationError(f"{do.position}: 'do' must call a device command")
         device = scope.infer(call.function.target)

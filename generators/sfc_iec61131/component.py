@@ -269,6 +269,7 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
                 once = not timed or owner is not node  # around the leaf: once it rests
                 branches.append(Branch(condition, statements, None, taken_once=once))
             if owner is None:
+                branches += self._budget_branches(node, stop, waiting)
                 break
             outcomes = {*(owner.info.outcomes or ()), *BUILTIN_OUTCOMES}  # never events
             for transition in owner.region.transitions:
@@ -276,7 +277,6 @@ class ComponentBuilder(Network, Hierarchy, TimeEvents, OrthogonalRegions, Childr
                     continue
                 if transition.stimulus in outcomes:
                     continue
-                branches += self._budget_branches(node, stop, waiting)
                 guard = self._guard(transition.guard)
                 chain = node.chain()[: node.chain().index(owner) + 1]
                 exits = stop + self._exits(chain)

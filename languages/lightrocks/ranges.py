@@ -61,11 +61,7 @@ class Flows:
             if action.kind != "do":
                 continue
             for statement in action.statements:
-                call = (
-                    statement.value
-                    if isinstance(statement, ast.Assignment)
-                    else statement.expression
-                )
+                call = ast.evaluated(statement)
                 if not isinstance(call, ast.Call) or not isinstance(call.function, ast.Member):
                     continue
                 owner = call.function.target

@@ -207,14 +207,15 @@ class Typing:
         if isinstance(statement, ast.ExtensionNode):
             self.report("LR0307", statement.position, "a do action must call a device command")
             return
-        call = statement.value if isinstance(statement, ast.Assignment) else statement.expression
+        call = ast.evaluated(statement)
         target = (
             self.assignable(statement.target, env)
             if isinstance(statement, ast.Assignment)
             else None
         )
         if not isinstance(call, ast.Call):
-            self.report("LR0307", call.position, "a do action must call a device command")
+            where = (call or statement).position
+            self.report("LR0307", where, "a do action must call a device command")
             return
         callee = self.infer(call.function, env, allow_command=True)
         if callee is UNKNOWN:
