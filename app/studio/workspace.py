@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from lightrocks.app.diagram import of_files
 from lightrocks.app.studio import edits
+from lightrocks.app.studio.drawing import Drawings
 from lightrocks.app.studio.findings import placed, places
 from lightrocks.generators.selection import selected
 from lightrocks.languages.lightrocks.model import Component, Region
@@ -28,10 +28,13 @@ from lightrocks.languages.lightrocks.printer import format_statechart_text
 from lightrocks.metamodel import ast, printer
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.check import CheckContext, check
+from lightrocks.workbench.diagnostics import Diagnostic
 from lightrocks.workbench.files import write_atomic
-from lightrocks.workbench.generators import GenerationRequest, load_generator, run_generator
+from lightrocks.workbench.generators import GenerationRequest
+from lightrocks.workbench.incremental import IncrementalCheck
 from lightrocks.workbench.languages import extensions
 from lightrocks.workbench.modelpath import model_files
+from lightrocks.workbench.workspace import Loaded
 
 USES = {"task": ("task", "skill"), "skill": ("skill", "action"), "action": (), "": ("",)}
 """Which layers a chart of each layer may import (a plain chart: plain charts)."""
@@ -55,8 +58,13 @@ class FileChange:
 @dataclass
 class Snapshot:
     fingerprint: tuple
-    context: CheckContext
+    findings: list[Diagnostic]
+    """Of every file below the folders."""
     components: dict[str, Component]
+    contexts: dict[str, CheckContext]
+    """Chart -> the check it was last checked in (what its diagram is generated from)."""
+    loaded: list[Loaded]
+    """The latest load of every file."""
     bundles: dict[str, str] = field(default_factory=dict)
     """Chart -> its diagram, drawn when first asked for."""
 
@@ -65,6 +73,8 @@ class Studio:
     def __init__(self, folders: list[Path]) -> None:
         self.folders = [f.resolve() for f in folders]
         self._snapshot: Snapshot | None = None
+        self._checker: IncrementalCheck | None = None
+        self._drawings = Drawings()
         self._lock = threading.RLock()
         self.done: list[tuple[str, list[FileChange]]] = []
         """Edits that undo takes back, the last last: what each did and to which files."""
@@ -80,15 +90,41 @@ class Studio:
         return tuple((str(f), *_stamp(f)) for f in self.files())
 
     def snapshot(self) -> Snapshot:
-        """The checked models as they are on disk now."""
+        """The checked models as they are on disk now: after a change of files, only the
+        files it can affect are checked again (the language server's incremental check),
+        and only the diagrams of charts among them are drawn again."""
         with self._lock:
             fingerprint = self.fingerprint()
-            if self._snapshot is None or self._snapshot.fingerprint != fingerprint:
-                files = [Path(f[0]) for f in fingerprint]
-                context = check(self.folders, self.folders)
-                request = GenerationRequest(context, [f for f in files if f.suffix == ".lr"])
-                components = {c.qualified_name: c for c in selected(request)}
-                self._snapshot = Snapshot(fingerprint, context, components)
+            old = self._snapshot
+            if old is not None and old.fingerprint == fingerprint:
+                return old
+            before = {f[0]: f[1:] for f in old.fingerprint} if old else {}
+            now = {f[0]: f[1:] for f in fingerprint}
+            if old is None or self._checker is None or set(before) != set(now):
+                self._checker = IncrementalCheck(self.folders, self.folders)
+                self._checker.full()
+                files = [Path(f) for f in now]
+                kept_components, kept_contexts, bundles = {}, {}, {}
+            else:
+                changed = {Path(f) for f in now if before[f] != now[f]}
+                self._checker.update({f: None for f in changed})
+                files = sorted(self._checker.rechecked)
+                stale = {str(f) for f in files}
+                kept = {n for n, c in old.components.items() if str(c.loaded.path) not in stale}
+                kept_components = {n: old.components[n] for n in kept}
+                kept_contexts = {n: old.contexts[n] for n in kept}
+                bundles = {n: b for n, b in old.bundles.items() if n in kept}
+            context = self._checker.context
+            request = GenerationRequest(context, [f for f in files if f.suffix == ".lr"])
+            fresh = {c.qualified_name: c for c in selected(request)}
+            self._snapshot = Snapshot(
+                fingerprint,
+                self._checker.items,
+                {**kept_components, **fresh},
+                {**kept_contexts, **dict.fromkeys(fresh, context)},
+                list(self._checker.loaded.values()),
+                bundles,
+            )
             return self._snapshot
 
     def charts(self) -> list[dict[str, str]]:
@@ -107,12 +143,7 @@ class Studio:
         """The chart's diagram as one SVG document (see :mod:`app.diagram`)."""
         snapshot = self.snapshot()
         if chart not in snapshot.bundles:
-            component = self.component(chart)
-            request = GenerationRequest(
-                snapshot.context, [component.loaded.path], {"levels": "yes"}
-            )
-            files = run_generator(load_generator("dot"), request)
-            snapshot.bundles[chart] = of_files(files, chart).bundle()
+            snapshot.bundles[chart] = self._drawings.bundle(self.component(chart))
         return snapshot.bundles[chart]
 
     def state(self, chart: str) -> dict[str, Any]:
@@ -140,7 +171,7 @@ class Studio:
             "layer": layer,
             "version": version(file.read_text(encoding="utf-8")),
             "stamp": stamp(snapshot.fingerprint),
-            "findings": placed(snapshot.context.diagnostics.items, file, marks),
+            "findings": placed(snapshot.findings, file, marks),
             "palette": palette,
             "outcomes": outcomes(component),
             "levels": levels(component),
@@ -165,7 +196,7 @@ class Studio:
         snapshot = self.snapshot()
         packages = {c.unit.package for c in snapshot.components.values()}
         cells = []
-        for loaded in snapshot.context.workspace.loaded_units():
+        for loaded in snapshot.loaded:
             for declaration in getattr(loaded.unit, "declarations", ()):
                 if isinstance(declaration, ast.Cell):
                     cells.append(f"{loaded.unit.package}.{declaration.name}")
@@ -222,7 +253,8 @@ class Studio:
             raise Conflict(f"{file.name} changed on disk since the page loaded it")
         if not isinstance(to, str):
             raise edits.EditError("the new name is missing")
-        changes = renamed(self.snapshot().context, component, level, element, to)
+        context = check(self.folders, self.folders)  # the index needs every file
+        changes = renamed(context, component, level, element, to)
         self._commit(f"rename {element or chart} to {to}", changes)
         return version(next((c.after for c in changes if c.after and c.path == file), "")) or ""
 

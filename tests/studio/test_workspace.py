@@ -183,3 +183,35 @@ def test_a_new_chart_is_created_empty_and_refused_when_it_is_there(models: Path)
         studio.create("din_rail.tasks", "Composed", "task")
     studio.undo()
     assert not file_of(models, name).exists()
+
+
+@pytest.mark.parametrize(
+    "chart", [AHEAD, PLUG, "din_rail.actions.SnapOn", "screwing.tasks.ScrewTask"]
+)
+def test_the_diagram_is_what_the_dot_target_draws(models: Path, chart: str) -> None:
+    from lightrocks.app.diagram import of_files
+    from lightrocks.workbench.generators import GenerationRequest, load_generator, run_generator
+
+    studio = Studio([models])
+    snapshot = studio.snapshot()
+    path = snapshot.components[chart].loaded.path
+    request = GenerationRequest(snapshot.contexts[chart], [path], {"levels": "yes"})
+    expected = of_files(run_generator(load_generator("dot"), request), chart).bundle()
+    assert studio.diagram(chart) == expected
+
+
+def test_after_a_change_only_the_files_it_affects_are_checked_and_drawn_again(
+    models: Path,
+) -> None:
+    studio = Studio([models])
+    studio.diagram(AHEAD)
+    studio.diagram("screwing.tasks.ScrewTask")
+    kept = studio.snapshot().bundles["screwing.tasks.ScrewTask"]
+    plug = file_of(models, PLUG)
+    plug.write_text(plug.read_text().replace("Unseen notFound;", "Unseen notFund;"))
+    snapshot = studio.snapshot()
+    assert snapshot.bundles == {"screwing.tasks.ScrewTask": kept}  # AHEAD imports PLUG
+    assert {f.code for f in snapshot.findings} == {"LR0111", "LR0209"}
+    assert "notFund" in studio.diagram(AHEAD)
+    plug.write_text(plug.read_text().replace("Unseen notFund;", "Unseen notFound;"))
+    assert studio.snapshot().findings == []
