@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import time
 import urllib.error
 import urllib.request
 from pathlib import Path
@@ -121,3 +122,41 @@ def test_a_token_less_socket_is_closed(served) -> None:
     address = f"{base.replace('http', 'ws')}events"
     with pytest.raises((ConnectionClosed, InvalidStatus)), connect(address) as socket:
         socket.recv(timeout=30)
+
+
+def get(url: str, path: str) -> tuple[int, bytes]:
+    base, _, query = url.partition("?")
+    try:
+        with urllib.request.urlopen(f"{base}{path}?{query}", timeout=60) as answer:
+            return answer.status, answer.read()
+    except urllib.error.HTTPError as error:
+        return error.code, error.read()
+
+
+def test_a_run_is_served_by_the_monitor_s_app_below_run(served) -> None:
+    url, _ = served
+    assert get(url, "run/")[0] == 404  # no run yet
+    options = json.loads(get(url, "runs")[1])
+    assert "dryrun" in options["adapters"]
+    assert "examples/din_rail/assembled.dryrun.json" in options["scripts"]
+    for body, message in [
+        ({"chart": "din_rail.tasks.AssembleRail", "adapter": "warp"}, "no adapter 'warp'"),
+        ({"chart": "no.Such", "adapter": "dryrun"}, "no statechart 'no.Such'"),
+        ({"chart": "din_rail.tasks.AssembleRail", "script": "x.json"}, "no outcome script"),
+        ({"chart": "din_rail.tasks.AssembleRail", "paused": "yes"}, "as texts"),
+    ]:
+        status, answer = post(url, "runs/start", json.dumps(body).encode())
+        assert status in (400, 404, 422) and message in answer["error"], answer
+    start = {"chart": "din_rail.tasks.AssembleRail", "adapter": "dryrun",
+             "script": "examples/din_rail/assembled.dryrun.json"}  # fmt: skip
+    status, answer = post(url, "runs/start", json.dumps(start).encode())
+    assert status == 200 and answer["chart"] == "din_rail.tasks.AssembleRail"
+    deadline = time.monotonic() + 60
+    while json.loads(get(url, "runs")[1])["running"]:
+        assert time.monotonic() < deadline
+        time.sleep(0.1)
+    assert json.loads(get(url, "runs")[1])["outcome"] == "assembled"
+    page = get(url, "run/")
+    assert page[0] == 200 and b"monitor.js" in page[1]  # the monitor's own page, with plots
+    assert get(url, "run/task.svg")[1].startswith(b"<svg")
+    assert get(url, "runs/frame.png")[0] == 204  # a dry run draws no cell

@@ -257,7 +257,20 @@ def test_a_dry_run_is_started_stepped_and_watched_from_the_studio(
     active = lambda: browser.find_element("id", "diagram").get_attribute("data-active")  # noqa: E731
     page.until(lambda: active() == "AssembleRail/PlugTerminal1")
     assert "current" in page.element("AssembleRail/PlugTerminal1").get_attribute("class")
+    browser.find_element("id", "run-follow").click()  # stay on the task's level
+    Select(browser.find_element("id", "chart")).select_by_value("din_rail.tasks.AssembleRail")
+    page.until(lambda: page.element("AssembleRail/PlugTerminal2") is not None)
+    page.click("AssembleRail/PlugTerminal2")
+    page.press("run-break")
+    page.until(
+        lambda: "breakpoint" in page.element("AssembleRail/PlugTerminal2").get_attribute("class")
+    )
     page.screenshot(tmp_path / "studio-run.png")
+    page.press("run-resume")
+    page.until(lambda: page.text("run-status") == "paused at AssembleRail/PlugTerminal2")
+    page.until(
+        lambda: "current" in page.element("AssembleRail/PlugTerminal2").get_attribute("class")
+    )
     page.press("run-resume")
     page.until(lambda: page.text("run-status") == "outcome: assembled")
     assert "finished assembled" in page.text("run-log")

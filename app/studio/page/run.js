@@ -9,7 +9,9 @@ let runFrames = null;
 function runButtons(status) {
   const running = Boolean(status.running);
   $("run-start").disabled = running;
-  for (const id of ["run-pause", "run-resume", "run-step", "run-abort"]) $(id).disabled = !running;
+  for (const id of ["run-pause", "run-resume", "run-step", "run-abort", "run-break"]) {
+    $(id).disabled = !running;
+  }
   $("run-monitor").hidden = !status.chart;
 }
 
@@ -43,7 +45,11 @@ function showRun() {
   $("diagram").dataset.active = runActive[runActive.length - 1] || "";
 }
 
+let runBreakpoints = [];
+
 function runStatus(status) {
+  runBreakpoints = status.breakpoints || runBreakpoints;
+  diagram.mark("breakpoint", runBreakpoints);
   if (status.error) {
     runSay(`error: ${status.error}`);
   } else if (status.outcome) {
@@ -95,8 +101,9 @@ function stopFrames() {
   runFrames = null;
 }
 
-async function runControl(action) {
-  const answer = await fetch(`run/control/${action}`, { method: "POST" });
+async function runControl(action, at = "") {
+  const where = at ? "?at=" + encodeURIComponent(at) : "";
+  const answer = await fetch(`run/control/${action}${where}`, { method: "POST" });
   const status = await answer.json();
   if (answer.ok) runStatus(status);
   else runSay(status.error);
@@ -118,6 +125,8 @@ function wireRun() {
   for (const action of ["pause", "resume", "step", "abort"]) {
     $(`run-${action}`).addEventListener("click", () => runControl(action));
   }
+  // The selected box or arrow, by the path the trace names it with (as the monitor's are).
+  $("run-break").addEventListener("click", () => selected && runControl("break", selected.path));
   api("runs").then(answer => answer.json()).then(options => {
     $("run-adapter").replaceChildren(...options.adapters.map(a => new Option(a, a)), new Option("none (plain chart)", ""));
     if (options.adapters.includes("dryrun")) $("run-adapter").value = "dryrun";
