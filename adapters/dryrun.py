@@ -40,11 +40,13 @@ class DryRunAdapter:
     """Implements :class:`runtime.contract.Adapter` for whatever devices a cell declares.
 
     ``outcomes`` scripts outcomes per command, ``{"gripper.close": ["empty", "holding"]}``:
-    the next one ends the next call of that command once it has run (``"error"`` raises an
-    adapter fault, ``"timeout"`` spends the budget); a call that another stop condition ends
-    first (a preemption, an event) leaves it for the following call; ``None`` lets one call
-    end as it comes. ``sensors`` overrides sensor values, ``{"robot.wrench": Wrench(...)}``
-    or a function of the time. ``calls`` and ``holds`` record what the runtime asked for.
+    the next one belongs to the next call of that command and ends it once it has run
+    (``"error"`` raises an adapter fault, ``"timeout"`` spends the budget); a call that
+    another stop condition ends first (a preemption, an event, a time event) has used it
+    all the same; one that is no outcome of the call is an adapter fault naming the
+    outcomes the call can end in; ``None`` lets one call end as it comes. ``sensors``
+    overrides sensor values, ``{"robot.wrench": Wrench(...)}`` or a function of the time.
+    ``calls`` and ``holds`` record what the runtime asked for.
     """
 
     def __init__(
@@ -150,12 +152,15 @@ class DryRunAdapter:
             raise AdapterError(f"unknown command {c.device}.{c.command}")
         self.calls.append((c.device, c.command, dict(c.args)))
         scripted = self._outcomes.get(f"{c.device}.{c.command}") or []
-        planned = scripted[0] if scripted else None
-        if scripted and planned is None:  # "this call as it comes": used by the call itself
-            scripted.pop(0)
+        planned = scripted.pop(0) if scripted else None  # this call's, however it ends
         if planned == "error":
-            scripted.pop(0)
             raise AdapterError(f"scripted fault of {c.device}.{c.command}")
+        if planned not in (None, TIMEOUT) and planned not in {s.name for s in c.stop}:
+            ends = ", ".join([s.name for s in c.stop if _plain(s.name)] + [TIMEOUT, "error"])
+            raise AdapterError(
+                f"the script's next outcome of {c.device}.{c.command}, '{planned}', cannot end"
+                f" this call: it ends in {ends}"
+            )
         state = self._state[c.device]
         for sensor in PER_COMMAND:
             if sensor in state:
@@ -167,18 +172,14 @@ class DryRunAdapter:
             if not settled and elapsed >= self.duration - 1e-9:
                 settled, value = True, self._settle(c.device, c.command, c.args)
             if settled and planned not in (None, TIMEOUT):
-                scripted.pop(0)
                 return CommandResult(planned, value), None
             if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
                 if elapsed >= c.budget - 1e-9:
-                    scripted.pop(0)
                     return CommandResult(TIMEOUT), None
                 return None, None
             snapshot = self.snapshot()
             for condition in c.stop:
                 if condition.holds(snapshot):
-                    if condition.name == planned:  # it ended as scripted: used
-                        scripted.pop(0)
                     return CommandResult(condition.name, value), None
             if elapsed >= c.budget - 1e-9:
                 return CommandResult(TIMEOUT), snapshot
@@ -214,6 +215,12 @@ class DryRunAdapter:
 
     def close(self) -> None:
         """Nothing to release."""
+
+
+def _plain(name: str) -> bool:
+    """An end condition of the command's own action (not an enclosing state's, not the
+    executor's probe for events and time events)."""
+    return "#" not in name and not name.startswith("@")
 
 
 def _initial(annotation: Any) -> Any:

@@ -1,5 +1,6 @@
 """The dry run as a test double: per-command sensors start from zero with every command, a
-scripted outcome is used by the call it ends, and a script file walks a task's branches."""
+scripted outcome belongs to the next call of its command however that call ends, and a
+script file walks a task's branches."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.cli import main
-from lightrocks.runtime.contract import Command, StopCondition, Vector3
+from lightrocks.runtime.contract import AdapterError, Command, StopCondition, Vector3
 
 
 class Robot:
@@ -67,13 +68,21 @@ def test_a_move_reports_how_far_it_went_and_the_next_one_starts_from_zero() -> N
     assert seen[0] == (Vector3(), 0.0, False)
 
 
-def test_a_scripted_outcome_waits_for_the_call_it_ends() -> None:
-    adapter = _adapter(outcomes={"robot.moveCartesian": ["blocked"]})
+def test_a_scripted_outcome_belongs_to_its_call_even_when_another_stop_ends_it() -> None:
+    adapter = _adapter(outcomes={"robot.moveCartesian": ["reached", "blocked"]})
     goal = {"goal": pin.SE3.Identity()}
     preempted = StopCondition("preempted", lambda s: True)
-    assert move(adapter, goal, [preempted]) == "preempted"
-    assert move(adapter, goal, [REACHED]) == "blocked"
+    blocked = StopCondition("blocked", lambda s: False)
+    assert move(adapter, goal, [REACHED, preempted]) == "preempted"  # used "reached"
+    assert move(adapter, goal, [REACHED, blocked]) == "blocked"
     assert move(adapter, goal, [REACHED]) == "reached"
+
+
+def test_a_scripted_outcome_the_call_cannot_end_in_is_a_fault_that_names_them() -> None:
+    adapter = _adapter(outcomes={"robot.moveCartesian": ["blocked"]})
+    with pytest.raises(AdapterError, match=r"'blocked', cannot end this call: it ends in "
+                       r"reached, timeout, error"):  # fmt: skip
+        move(adapter, {"goal": pin.SE3.Identity()}, [REACHED])
 
 
 # -- run --script FILE ---------------------------------------------------------------------
@@ -223,8 +232,9 @@ def test_a_call_that_ends_as_scripted_by_itself_uses_the_script_up() -> None:
     adapter = _adapter(outcomes={"robot.moveCartesian": ["clicked", "blocked"]})
     goal = {"goal": pin.SE3.Identity()}
     clicked = StopCondition("clicked", lambda s: True)
+    blocked = StopCondition("blocked", lambda s: False)
     assert move(adapter, goal, [clicked]) == "clicked"
-    assert move(adapter, goal, [REACHED]) == "blocked"
+    assert move(adapter, goal, [REACHED, blocked]) == "blocked"
 
 
 def test_the_rail_example_script_assembles(capsys: pytest.CaptureFixture[str]) -> None:
