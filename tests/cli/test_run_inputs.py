@@ -26,7 +26,7 @@ def _refused(argv: list[str], capsys: pytest.CaptureFixture[str], words: str) ->
     ("model", "words"),
     [
         (EXAMPLES / "screwing", "is a folder"),
-        (EXAMPLES / "robots" / "lwr.lrd", "is not a statechart file"),
+        (EXAMPLES / "din_rail" / "cell" / "RailCell.lrd", "is not a statechart file"),
         (Path(os.devnull), "not a regular file"),
     ],
 )

@@ -4,7 +4,6 @@ starts; a missing object is the model's mistake (exit 1), an unknown scene a wro
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import pytest
@@ -15,7 +14,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 CELL = """package bench;
 
-import robots.*;
+import lightrocks.robots.*;
 
 <<scene="{scene}">> cell Bench {{
   robot : LWR;
@@ -42,7 +41,6 @@ import bench.Bench;
 
 @pytest.fixture
 def models(tmp_path: Path) -> Path:
-    shutil.copytree(ROOT / "examples" / "robots", tmp_path / "robots")
     (tmp_path / "bench").mkdir()
     (tmp_path / "bench" / "Look.lr").write_text(LOOK)
     return tmp_path

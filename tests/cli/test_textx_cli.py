@@ -33,14 +33,15 @@ def textx(*args: str, **environment: str) -> tuple[int, str]:
 
 @pytest.fixture
 def models(tmp_path: Path) -> Path:
-    """The din-rail case study without the robots package it imports."""
-    return shutil.copytree(EXAMPLES / "din_rail", tmp_path / "din_rail")
+    """The din-rail case study without the cell package it imports."""
+    ignore = shutil.ignore_patterns("cell")
+    return shutil.copytree(EXAMPLES / "din_rail", tmp_path / "din_rail", ignore=ignore)
 
 
 @pytest.fixture
 def library(tmp_path: Path) -> Path:
-    """A model-path folder with the robots package."""
-    shutil.copytree(EXAMPLES / "robots", tmp_path / "library" / "robots")
+    """A model-path folder with the cell package."""
+    shutil.copytree(EXAMPLES / "din_rail" / "cell", tmp_path / "library" / "din_rail" / "cell")
     return tmp_path / "library"
 
 
@@ -53,8 +54,8 @@ def test_check_runs_the_cocos(tmp_path: Path) -> None:
 
 
 def test_check_reads_domain_files(tmp_path: Path) -> None:
-    status, output = textx("check", str(EXAMPLES / "robots" / "lwr.lrd"))
-    assert (status, "lwr.lrd: OK." in output) == (0, True)
+    status, output = textx("check", str(EXAMPLES / "din_rail" / "cell" / "RailCell.lrd"))
+    assert (status, "RailCell.lrd: OK." in output) == (0, True)
     broken = tmp_path / "Broken.lrd"
     broken.write_text("device D { sensor Nothing s; }\n")
     status, output = textx("check", str(broken))
@@ -65,7 +66,7 @@ def test_check_reads_domain_files(tmp_path: Path) -> None:
 def test_check_finds_imported_packages_on_the_model_path(models: Path, library: Path) -> None:
     task = models / "tasks" / "AssembleRail.lr"
     status, output = textx("check", str(task))
-    assert status == 1 and "package 'robots' not found" in output
+    assert status == 1 and "cannot resolve import 'din_rail.cell.RailCell'" in output
     status, output = textx("check", str(task), LIGHTROCKS_PATH=str(library))
     assert status == 0, output
 
@@ -74,7 +75,7 @@ def test_generate_takes_a_model_path(models: Path, library: Path, tmp_path: Path
     task = str(models / "tasks" / "AssembleRail.lr")
     out = tmp_path / "out"
     status, output = textx("generate", task, "--target", "sfc", "-o", str(out))
-    assert status == 1 and "package 'robots' not found" in output
+    assert status == 1 and "cannot resolve import 'din_rail.cell.RailCell'" in output
     assert not out.exists()
     status, output = textx(
         "generate", task, "--target", "sfc", "-o", str(out), "--path", str(library)

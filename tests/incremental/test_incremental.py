@@ -69,7 +69,7 @@ def test_fixing_an_imported_chart_clears_findings_of_importers(screwing: Path) -
 
 MEANING_EDITS = [
     # (file below examples/, old, new): each keeps the names the file declares
-    ("robots/lwr.lrd", "sensor Wrench wrench;", "sensor Wrench force;"),
+    ("screwing/cell/ScrewingCell.lrd", "Integer cycles = 0;", "Length cycles = 0 mm;"),
     ("din_rail/cell/RailCell.lrd", "object terminal3", "object clip3"),
     ("din_rail/actions/Seat.lr", "end condition", "end condition moved; end condition"),
     ("din_rail/skills/CarryToSlot.lr", "end condition above;", "end condition over;"),

@@ -89,7 +89,6 @@ def test_a_second_check_reads_every_file_from_the_store(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture
 ) -> None:
     shutil.copytree(EXAMPLES / "screwing", tmp_path / "models" / "screwing")
-    shutil.copytree(EXAMPLES / "robots", tmp_path / "models" / "robots")
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     monkeypatch.setattr(checkstore.DiskStore, "get", lambda self, key: None)  # check again
     hits = []

@@ -148,8 +148,9 @@ async def test_definition_of_a_sensor_is_in_the_device_model(
     location = await client.text_document_definition_async(
         lsp.DefinitionParams(document(uri), cursor(text, "robot.goalReached", "goalReached"))
     )
-    assert path_of(location.uri).suffix == ".lrd"
-    declared = path_of(location.uri).read_text(encoding="utf-8").splitlines()
+    library = path_of(location.uri)  # the device library, on every model path
+    assert library.parts[-4:] == ("library", "lightrocks", "robots", "lwr.lrd")
+    declared = library.read_text(encoding="utf-8").splitlines()
     assert "goalReached" in declared[location.range.start.line]
 
 
