@@ -34,7 +34,15 @@ from lightrocks.runtime.faults import (
     UnknownEvent,
     describe,
 )
-from lightrocks.runtime.states import Action, Choice, Composite, Parallel, State, Transition
+from lightrocks.runtime.states import (
+    Action,
+    Choice,
+    Composite,
+    Condition,
+    Parallel,
+    State,
+    Transition,
+)
 from lightrocks.runtime.trace import Trace
 from lightrocks.runtime.tree import (
     BUDGET_SPENT,
@@ -339,7 +347,7 @@ class Executor(CommandRunner):
         """Leave a choice pseudostate at once by its first branch whose guard holds."""
         parent = choice.parent
         for transition in parent.transitions_from(choice.name):
-            if transition.guard is None or transition.guard(parent, s):
+            if _guard_holds(transition, parent, s):
                 return self._take(parent, transition, s)
         return self._error(parent, f"no branch of choice '{choice.name}' holds", choice.LOCATION)
 
@@ -347,9 +355,9 @@ class Executor(CommandRunner):
         """The child a composite starts in: through the first start condition that holds."""
         if state.STARTS:
             for condition in state.STARTS:
-                if condition.holds is None or condition.holds(state, s):
+                if _condition_holds(condition, state, s):
                     for transition in state.transitions_from(condition.name):
-                        if transition.guard is None or transition.guard(state, s):
+                        if _guard_holds(transition, state, s):
                             return self._take(state, transition, s, enter=False)
             return self._error(state, "no start condition holds", state.LOCATION)
         if state.INITIAL is not None:
@@ -365,7 +373,7 @@ class Executor(CommandRunner):
                 t.action(owner, s)
             except Exception as exc:  # reported where the transition is written
                 raise _located(exc, t.location) from None
-        if t.post is not None and not t.post(owner, s):
+        if t.post is not None and not _located_call(t.post, owner, s, t.location):
             return self._error(owner, "postcondition violated", t.location)
         if t.target in owner.end_names:  # ended like in a final state: nothing to remember
             owner.last = None
@@ -390,9 +398,7 @@ class Executor(CommandRunner):
             return self._join(parent)
         self._exit(state, s)
         for transition in parent.transitions_from(state.name):
-            if matches(transition, outcome, state) and (
-                transition.guard is None or transition.guard(parent, s)
-            ):
+            if matches(transition, outcome, state) and _guard_holds(transition, parent, s):
                 if outcome == ERROR:
                     self.fault = None
                 return self._take(parent, transition, s)
@@ -459,7 +465,7 @@ class Executor(CommandRunner):
             if inner:
                 return inner
         for owner, transition in self._reactions[state].get(event, ()):
-            if transition.guard is None or transition.guard(owner, s):
+            if transition.guard is None or _guard_holds(transition, owner, s):
                 return [(state, transition)]
         return []
 
@@ -488,7 +494,7 @@ class Executor(CommandRunner):
         self._write("transition", state=state.path, source=state.name, target="",
                     stimulus=transition.stimulus)  # fmt: skip
         if transition.action is not None:
-            transition.action(state, s)
+            _located_call(transition.action, state, s, transition.location)
         return None
 
     # -- time events ----------------------------------------------------------------------
@@ -496,7 +502,8 @@ class Executor(CommandRunner):
     def _arm(self, state: State, s: Snapshot) -> None:
         """Start the time events of a state just entered: its own and those leaving it."""
         for owner, transition in self._timed[state]:
-            self._timers[(state, transition)] = self.time + transition.delay(owner, s)
+            delay = _located_call(transition.delay, owner, s, transition.location)
+            self._timers[(state, transition)] = self.time + delay
 
     def _due(self, now: float) -> Timer | None:
         """The pending time event with the earliest deadline not after ``now``; of several at
@@ -513,7 +520,7 @@ class Executor(CommandRunner):
         s = self.snapshot()
         owner = state if not transition.target else state.parent
         self._write("event", name=transition.stimulus, state=state.path)
-        if transition.guard is not None and not transition.guard(owner, s):
+        if not _guard_holds(transition, owner, s):
             return None
         if transition is BUDGET_SPENT:
             return (state, TIMEOUT)
@@ -544,7 +551,7 @@ class Executor(CommandRunner):
 
     def _violated(self, state: State, s: Snapshot) -> tuple[State, str] | None:
         for invariant in state.INVARIANTS:
-            if not invariant.holds(state, s):
+            if not _located_call(invariant.holds, state, s, invariant.location):
                 return self._error(state, "invariant violated", invariant.location)
         return None
 
@@ -559,6 +566,37 @@ class Executor(CommandRunner):
             if violated is not None:
                 return violated
         return None
+
+
+def _guard_holds(transition: Transition, owner: State, s: Snapshot) -> bool:
+    """The transition's guard holds (or it has none); a fault of the guard is reported
+    where the transition is written."""
+    if transition.guard is None:
+        return True
+    try:
+        return bool(transition.guard(owner, s))
+    except Exception as exc:
+        raise _located(exc, transition.location) from None
+
+
+def _condition_holds(condition: Condition, owner: State, s: Snapshot) -> bool:
+    """A start or end condition holds (or is a pure entry or exit point); a fault of its
+    expression is reported where the condition is written."""
+    if condition.holds is None:
+        return True
+    try:
+        return bool(condition.holds(owner, s))
+    except Exception as exc:
+        raise _located(exc, condition.location) from None
+
+
+def _located_call(code: Any, owner: State, s: Snapshot, location: str) -> Any:
+    """``code(owner, s)`` of a table of the model (an action, a delay, a postcondition, an
+    invariant); a fault of it is reported at ``location``, where it is written."""
+    try:
+        return code(owner, s)
+    except Exception as exc:
+        raise _located(exc, location) from None
 
 
 def _located(exc: Exception, location: str) -> Exception:
