@@ -196,6 +196,10 @@ def test_the_studio_and_an_editor_change_the_chart_at_once_and_no_edit_is_lost(
     assert "PlugTerminal2 -> PlugTerminal3 plugged" in page.file()
     assert "slot = 75 mm" in page.file()
 
+    path.write_text(path.read_text()[:200])  # an editor leaves it half-written
+    page.until(lambda: "din_rail_ahead.tasks.AssembleRailAhead is gone" in page.text("message"))
+    assert AHEAD not in browser.find_element("id", "chart").text
+
 
 def request(
     url: str, path: str, body: dict | None = None, chart: str = "", **headers: str
@@ -299,7 +303,8 @@ def test_a_simulation_started_from_the_studio_shows_the_cell_live(
     page.until(lambda: browser.find_elements("css selector", "#run-adapter [value='mujoco']"))
     Select(browser.find_element("id", "run-adapter")).select_by_value("mujoco")
     page.press("run-start")
-    frame = lambda: browser.find_element("id", "run-view").get_attribute("data-frame")  # noqa: E731
+    shown = "return document.getElementById('run-view').dataset.frame ?? null"  # the newest
+    frame = lambda: browser.execute_script(shown)  # noqa: E731
     page.until(lambda: frame() is not None)
     first = frame()
     width = "return document.getElementById('run-view').naturalWidth"

@@ -88,7 +88,7 @@ async function load(chart, keep = false) {
 async function listCharts(chosen) {
   const charts = await (await api("charts")).json();
   $("chart").replaceChildren(...charts.map(c => new Option(`${c.name} (${c.layer || "plain"})`, c.name)));
-  if (chosen) $("chart").value = chosen;
+  if (chosen && charts.some(c => c.name === chosen)) $("chart").value = chosen;
   return charts;
 }
 
@@ -132,8 +132,8 @@ function field(input, value) {
 function showForms(box) {
   const element = selected?.element;
   const own = selected?.kind === "frame" && diagram.key === viewChart();
-  $("rename-form").hidden = !(box && box.kind !== "choice" && !element.includes("/")) && !own;
-  field($("rename-to"), own ? viewChart().split(".").pop() : (box ? element : ""));
+  $("rename-form").hidden = !box && !own;
+  field($("rename-to"), own ? viewChart().split(".").pop() : (box ? element.split("/").pop() : ""));
   outcomeChips(box);
   argumentsForm(box);
   conditionForm(box);
@@ -228,11 +228,17 @@ function checked(form, out, request, done) {
   });
 }
 
+// Each form's latest preview wins: an answer to an older text that comes late is dropped.
+const previews = new WeakMap();
+
 async function preview(request, out) {
   const chart = viewChart();
   const body = { chart, version: states.get(chart)?.version, level: diagram.key, ...request };
+  const number = (previews.get(out) || 0) + 1;
+  previews.set(out, number);
   const answer = await api("preview", {}, body);
   const result = await answer.json();
+  if (previews.get(out) !== number) return;
   out.classList.remove("ok", "bad");
   if (!answer.ok) {
     out.textContent = result.error;
@@ -574,8 +580,12 @@ function watchFiles() {
 async function changed(change) {
   waiting = busy ? change : null;
   if (busy || change.stamp === stamp) return;
-  await load(root, true);
-  say(`reloaded: ${change.files.join(", ") || "the files"} changed on disk`);
+  const shown = root;
+  const charts = await listCharts(shown);  // charts come and go with their files
+  const still = charts.some(c => c.name === shown);
+  await load(still ? shown : charts[0]?.name || shown, still);
+  say(`reloaded: ${change.files.join(", ") || "the files"} changed on disk` +
+    (still ? "" : `; ${shown} is gone (or does not parse)`), !still);
 }
 
 async function poll() {
