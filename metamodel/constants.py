@@ -13,6 +13,7 @@ import operator
 from collections.abc import Callable
 
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.printer import expression
 
 Value = bool | int | float | str | tuple
 """A Boolean, an Integer, a Real (SI), a String, or a vector of numbers."""
@@ -58,12 +59,49 @@ def fold(expression: ast.Expression | None) -> Value | None:
     return None
 
 
+def overflow(expression: ast.Expression | None) -> float | None:
+    """What an arithmetic operation on constants computes when that is beyond a Real (``inf``
+    or ``nan``; a whole number too large for a Real is ``inf``): its operands fold to finite
+    numbers, it does not. ``None`` for anything else (a literal beyond a Real is no
+    operation; an operation on such a value, or on names, is not judged here). Every target
+    computes the same operation in IEEE doubles, so this is the value it would run with."""
+    if not isinstance(expression, ast.Binary) or expression.operator not in ("+", "-", "*", "/"):
+        return None
+    left, right = fold(expression.left), fold(expression.right)
+    if not all(_is_number(v) and _finite(v) is not None for v in (left, right)):
+        return None  # not constant, or a literal beyond a Real already (reported as such)
+    if expression.operator == "/" and right == 0:
+        return None
+    try:
+        exact = _ARITHMETIC[expression.operator](left, right)
+        result = float(exact)
+    except OverflowError:  # whole numbers whose result is beyond a Real
+        sign = left * right if expression.operator in ("*", "/") else exact
+        return math.inf if sign >= 0 else -math.inf
+    return None if math.isfinite(result) else result
+
+
+def beyond_a_real(binary: ast.Binary, value: float) -> str:
+    """The finding of an operation on constants whose result no Real holds (its text cut
+    short when it is long)."""
+    text = expression(binary)
+    if len(text) > 60:
+        text = text[:57] + "..."
+    return (
+        f"'{text}' computes {value}: beyond the largest number a Real holds "
+        "(about 1.8e308 in SI units)"
+    )
+
+
 def _is_number(value: Value | None) -> bool:
     return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def _finite(value: float) -> Value | None:
-    return value if math.isfinite(value) else None
+    try:
+        return value if math.isfinite(value) else None
+    except OverflowError:  # a whole number beyond a Real
+        return None
 
 
 def _unary(sign: str, value: Value | None) -> Value | None:

@@ -21,7 +21,7 @@ from lightrocks.runtime.contract import (
 )
 from lightrocks.runtime.environment import SceneObject, object_name
 from lightrocks.runtime.faults import DescribedFault, describe
-from lightrocks.runtime.safety import refusal
+from lightrocks.runtime.safety import not_finite, refusal
 from lightrocks.runtime.states import Action, Composite, State, Transition
 from lightrocks.runtime.trace import Trace, to_json
 
@@ -154,8 +154,11 @@ class CommandRunner:
         }
 
     def _refused(self, action: Action, arguments: dict[str, Any]) -> Done:
-        """A value outside its safe range: no command is sent, the arm holds, ``error``."""
-        refused = refusal(action.RANGES, arguments)
+        """A value outside its safe range, or a number that is not finite: no command is
+        sent, the arm holds, ``error``."""
+        refused = refusal(action.RANGES, arguments) or not_finite(
+            action.DEVICE, action.COMMAND, arguments
+        )
         if refused is None:
             return None
         self._hold()

@@ -5,7 +5,8 @@ running them (command line, ``run_once``, ``--seeds``, plain Python) is held to 
 
 This is the one implementation of the check and its message, here because the runtime may
 import nothing of ours: the language's checks of constant values (languages/domain/ranges.py)
-import it, so that check and run judge a value alike (NaN is never safe)."""
+import it, so that check and run judge a value alike (NaN is never safe). Whatever its range,
+no argument that holds a number that is not finite (``inf``, ``nan``) reaches a device."""
 
 from __future__ import annotations
 
@@ -77,16 +78,61 @@ def refusal(ranges: Mapping[str, SafeRange], arguments: Mapping[str, Any]) -> st
     return None
 
 
+def not_finite(device: str, command: str, arguments: Mapping[str, Any]) -> str | None:
+    """Why a command must not be sent because an argument holds a number that is not finite
+    (``inf``, ``nan``, a whole number beyond a Real): no device is asked to move to infinity,
+    whether or not the argument has a safe range. ``None`` when every number is finite."""
+    for name, value in arguments.items():
+        numbers = _numbers(value)
+        if numbers is None:
+            number = _non_finite_inside(value)
+            if number is not None:
+                return f"refused: {device}.{command}({name}) holds {number}, not a finite number"
+            continue
+        for index, number in enumerate(numbers):
+            if not math.isfinite(number):
+                element = f"{name}[{index}]" if len(numbers) > 1 else name
+                return f"refused: {device}.{command}({element}) = {number}, not a finite number"
+    return None
+
+
+def _non_finite_inside(value: Any) -> float | None:
+    """The first number of a frame (``homogeneous``), a vector or a wrench (``array()``) that
+    is not finite; ``None`` when they all are or ``value`` is none of these."""
+    inside = getattr(value, "homogeneous", None)
+    if inside is None and callable(getattr(value, "array", None)):
+        try:
+            inside = value.array()
+        except Exception:  # not one of ours: nothing to judge
+            return None
+    if inside is None:
+        return None
+    ravel = getattr(inside, "ravel", None)  # an array of numpy, which is not loaded here
+    try:
+        numbers = [float(v) for v in (ravel() if callable(ravel) else inside)]
+    except (TypeError, ValueError, OverflowError):
+        return None
+    return next((n for n in numbers if not math.isfinite(n)), None)
+
+
+def _float(value: Any) -> float:
+    """``float(value)``; a whole number beyond a Real is infinite, as it is no Real."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
+
+
 def _numbers(value: Any) -> list[float] | None:
     """The numbers of a scalar or a vector (tuple, list, numpy array); None for anything else,
     which no range constrains."""
-    if isinstance(value, bool | str | bytes):
+    if isinstance(value, bool | str | bytes) or value is None:
         return None
     try:
-        return [float(value)]
+        return [_float(value)]
     except (TypeError, ValueError):
         pass
     try:
-        return [float(v) for v in value]
+        return [_float(v) for v in value]
     except (TypeError, ValueError):
         return None

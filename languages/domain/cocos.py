@@ -17,6 +17,7 @@ from lightrocks.languages.domain.types import (
     quantity_of,
 )
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.constants import beyond_a_real, overflow
 from lightrocks.metamodel.units import UnitError, lookup
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity, did_you_mean
@@ -107,10 +108,13 @@ def _commands(context: object) -> Iterator[tuple[Loaded, ast.Device, ast.Command
 def command_defaults_fit(context: object) -> Iterator[Finding]:
     types = _types(context)
     for loaded in _domain_units(context):
-        for node in ast.walk(loaded.unit.declarations):
+        devices = [d for d in loaded.unit.declarations if isinstance(d, ast.Device)]
+        for node in ast.walk(devices):  # a cell's objects are typed as LR0302
             if isinstance(node, ast.Quantity) and not math.isfinite(node.value):
                 message = f"'{node.text}' is beyond the largest number a Real holds"
                 yield node.position, f"{message} (about 1.8e308 in SI units)", ""
+            elif isinstance(node, ast.Binary) and (beyond := overflow(node)) is not None:
+                yield node.position, beyond_a_real(node, beyond), ""
     for loaded, _, command in _commands(context):
         for parameter in command.parameters:
             declared = types.resolve(loaded, parameter.type)

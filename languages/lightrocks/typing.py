@@ -42,6 +42,7 @@ from lightrocks.languages.domain.types import (
 )
 from lightrocks.languages.lightrocks.model import Component, ModelSet, Region
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.constants import beyond_a_real, overflow
 from lightrocks.metamodel.units import ONE, UnitError, lookup
 from lightrocks.workbench.diagnostics import did_you_mean
 from lightrocks.workbench.workspace import Loaded
@@ -547,6 +548,9 @@ class Typing:
         left = self.infer(binary.left, env)
         right = self.infer(binary.right, env)
         operator = binary.operator
+        beyond = overflow(binary)
+        if beyond is not None:
+            self.report("LR0302", binary.position, beyond_a_real(binary, beyond))
         if operator in ("&&", "||"):
             for side, node in ((left, binary.left), (right, binary.right)):
                 if side not in (BOOLEAN, UNKNOWN):
