@@ -325,6 +325,8 @@ def operation(place: list[str], request: dict[str, Any], component: Component) -
     if kind == "add-state":
         where, name = inside(request["name"])
         imported = text(request["imports"], "imports")
+        if not edits.TYPE.match(imported):
+            raise edits.EditError(f"imports '{imported}' is not a qualified chart name")
 
         def add(unit: ast.StatechartUnit) -> ast.StatechartUnit:
             unit, simple = edits.with_import(unit, imported)

@@ -60,6 +60,7 @@ def snapshot(models: Path) -> dict[Path, str]:
         ("edit", {"op": "move", "state": "PlugTerminal3", "steps": "x"}, 422, "whole number"),
         ("edit", {"op": "add-state", "name": ["x"], "imports": "A"}, 422, "must be a text"),
         ("edit", {"op": "add-state", "name": "A", "imports": 3}, 422, "must be a text"),
+        ("edit", {"op": "add-state", "name": "A", "imports": "a; b"}, 422, "qualified chart name"),
         (
             "edit",
             {"op": "set-transition", "source": "go", "target": "PlugTerminal1", "guard": "1 +"},
