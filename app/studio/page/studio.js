@@ -453,6 +453,62 @@ function draggable(element, payload) {
 
 // The box under the pointer; else the smallest box whose bounds (a condition's bullseye
 // with its label) hold it, or one a few pixels away: small targets stay easy to hit.
+// A box dragged onto another: a transition from it, with the outcome picked from a menu
+// where it has several (a click without a move only selects).
+function boxDragging() {
+  let start = null;
+  $("diagram").addEventListener("pointerdown", event => {
+    const g = event.target.closest("g.node[data-path]");
+    if (event.button !== 0 || !g || g.dataset.element.includes("#")) return;
+    start = { x: event.clientX, y: event.clientY, source: g.dataset.element, moved: false };
+  });
+  document.addEventListener("pointermove", event => {
+    if (!start) return;
+    if (!start.moved && Math.hypot(event.clientX - start.x, event.clientY - start.y) < 8) return;
+    start.moved = true;
+    const ghost = $("ghost");
+    ghost.textContent = `${start.source} →`;
+    ghost.hidden = false;
+    ghost.style.left = `${event.clientX + 10}px`;
+    ghost.style.top = `${event.clientY + 10}px`;
+    document.querySelectorAll("#diagram .drop").forEach(g => g.classList.remove("drop"));
+    dropTarget(event.clientX, event.clientY)?.classList.add("drop");
+  });
+  document.addEventListener("pointerup", event => {
+    const drag = start;
+    start = null;
+    if (!drag?.moved) return;
+    const swallow = e => e.stopPropagation();  // the click that ends a drag selects nothing
+    document.addEventListener("click", swallow, { capture: true, once: true });
+    setTimeout(() => document.removeEventListener("click", swallow, { capture: true }), 0);
+    $("ghost").hidden = true;
+    document.querySelectorAll("#diagram .drop").forEach(g => g.classList.remove("drop"));
+    const target = dropTarget(event.clientX, event.clientY);
+    if (!target || !target.classList.contains("node") || target.dataset.element.includes("#")) return;
+    const outcomes = level().boxes[drag.source]?.outcomes || [];
+    const link = stimulus => dropped({ kind: "outcome", source: drag.source, stimulus }, target);
+    if (!outcomes.length) link("");
+    else outcomeMenu(event.clientX, event.clientY, outcomes, link);
+  });
+}
+
+function outcomeMenu(x, y, outcomes, chosen) {
+  const menu = $("outcome-menu");
+  menu.replaceChildren(...[...outcomes, ""].map(outcome => {
+    const item = document.createElement("li");
+    item.textContent = outcome || "(no stimulus)";
+    item.dataset.outcome = outcome;
+    item.addEventListener("click", () => { menu.hidden = true; chosen(outcome); });
+    return item;
+  }));
+  menu.style.left = `${x}px`;
+  menu.style.top = `${y}px`;
+  menu.hidden = false;
+  setTimeout(() => document.addEventListener("click", event => {
+    if (!menu.contains(event.target)) menu.hidden = true;
+  }, { once: true }), 0);
+}
+
 function dropTarget(x, y) {
   const hit = document.elementFromPoint(x, y)?.closest("#diagram g.node[data-path]");
   if (hit) return hit;
@@ -602,6 +658,7 @@ async function start() {
   const charts = await listCharts();
   const first = charts.find(c => c.name === wanted) || charts.find(c => c.layer === "task") || charts[0];
   wire();
+  boxDragging();
   if (typeof wireRun === "function") wireRun();
   if (!first) { say("no statechart below the studio's folders", true); return; }
   $("chart").value = first.name;
