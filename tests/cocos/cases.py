@@ -842,3 +842,7 @@ CASES += SAFETY_CASES
 from cocos.cases_behaviour import BEHAVIOUR_CASES  # noqa: E402  (built on the models above)
 
 CASES += BEHAVIOUR_CASES
+
+from cocos.cases_umlp import UMLP_CASES  # noqa: E402  (UML/P statecharts, .sc)
+
+CASES += UMLP_CASES
