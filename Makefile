@@ -36,6 +36,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_incremental.py
 	$(BIN)/python benchmarks/bench_monitor.py
 	$(BIN)/python benchmarks/bench_verify.py
+	$(BIN)/python benchmarks/bench_studio.py
 
 PICTURES := examples/screwing/skills/ScrewIn.lr examples/screwing/tasks/ScrewTask.lr \
 	examples/din_rail/tasks/AssembleRail.lr examples/din_rail_ahead/tasks/PlugTerminalAhead.lr
