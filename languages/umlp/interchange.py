@@ -32,7 +32,7 @@ from lightrocks.languages.domain.types import BUILTIN_FUNCTIONS
 from lightrocks.languages.umlp import nodes as n
 from lightrocks.languages.umlp.printer import expression as java_text
 from lightrocks.languages.umlp.printer import inline, print_sc, stereotype
-from lightrocks.languages.umlp.typing import type_of
+from lightrocks.languages.umlp.typing import JAVA_LANG_TYPES, type_of
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.printer import expression as printed
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
@@ -59,6 +59,7 @@ _PRECEDENCE = {
 _ATOM = 9
 _COMPOUND = {"+=": "+", "-=": "-", "*=": "*", "/=": "/", "%=": "%"}
 _DEFAULTS = {"Integer": "0", "Real": "0.0", "Boolean": "false", "String": '""'}
+_JAVA = {"Integer": "int", "Real": "double", "Boolean": "boolean", "String": "String"}
 
 
 class Refused(Exception):
@@ -236,6 +237,7 @@ class _ToLightRocks:
         self.name = name
         self.findings = _Findings()
         self.variables: dict[str, set[str]] = {}  # undeclared variable -> LightRocks types
+        self.known: dict[str, str] = {}  # the guesses so far, as Java types
 
     def guarded(self, convert, *args):
         """``convert(*args)``, or None after recording why it is refused."""
@@ -489,14 +491,27 @@ class _ToLightRocks:
     # -- variables the chart does not declare ----------------------------------------------
 
     def infer(self, elements: Sequence[n.SCElement]) -> None:
-        for part in _java_parts(elements):
-            if isinstance(part, tuple):  # (expression, needs a boolean)
-                self.condition(*part)
-            else:
-                self.statement_types(part)
+        """Guess the types of undeclared variables from their uses, again while a guess
+        types more (``n = n + 1`` is an Integer once ``n = 0`` is)."""
+        parts = list(_java_parts(elements))
+        known: dict[str, str] = {}
+        for _ in range(len(parts) + 1):
+            for part in parts:
+                if isinstance(part, tuple):  # (expression, needs a boolean)
+                    self.condition(*part)
+                else:
+                    self.statement_types(part)
+            guessed = {
+                name: _JAVA[kind]
+                for name, kinds in self.variables.items()
+                if (kind := _joined(kinds)) is not None
+            }
+            if guessed == known:
+                return
+            known = self.known = guessed
 
     def note(self, name: str, kind: str | None) -> None:
-        if kind is not None:
+        if kind is not None and name not in JAVA_LANG_TYPES:
             self.variables.setdefault(name, set()).add(kind)
 
     def condition(self, node: n.JExpression, boolean: bool) -> None:
@@ -520,7 +535,7 @@ class _ToLightRocks:
 
     def compared(self, name: n.JExpression, other: n.JExpression) -> None:
         if isinstance(name, n.JName):
-            self.note(name.name, _lr_type(type_of(other)))
+            self.note(name.name, _lr_type(type_of(other, names=self.known)))
 
     def statement_types(self, node: n.JStatement) -> None:
         match node:
@@ -530,9 +545,8 @@ class _ToLightRocks:
             case n.JExpressionStatement(expression=value):
                 match value:
                     case n.JAssignment(operator=operator, target=n.JName(name=name), value=v):
-                        self.note(name, _lr_type(type_of(v)))
-                        if operator != "=":
-                            self.note(name, _lr_type(type_of(v)) or "Integer")
+                        kind = _lr_type(type_of(v, names=self.known))
+                        self.note(name, kind if operator == "=" else kind or "Integer")
                     case (
                         n.JPostfix(operand=n.JName(name=name))
                         | n.JPrefix(operator="++" | "--", operand=n.JName(name=name))

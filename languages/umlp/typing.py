@@ -9,7 +9,7 @@ MontiCore's ``InvariantValid`` and ``TransitionPreconditionsAreBoolean`` skip ob
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 from lightrocks.languages.umlp import nodes as n
 
@@ -66,13 +66,18 @@ def _promoted(left: str, right: str) -> str:
     return "int"
 
 
-def type_of(node: n.JExpression, unresolved: Unresolved | None = None) -> str:
+def type_of(
+    node: n.JExpression,
+    unresolved: Unresolved | None = None,
+    names: Mapping[str, str] | None = None,
+) -> str:
     """The Java type of ``node`` (``boolean``, ``int``, ``String``, …), :data:`UNKNOWN`
     where it depends on names the chart does not declare, :data:`TYPE_REFERENCE` for a
-    type used as a value. ``unresolved`` is told of every name whose type is unknown."""
+    type used as a value. ``unresolved`` is told of every name whose type is unknown;
+    ``names`` gives types of names where they are known (the conversion's guesses)."""
 
     def infer(expression: n.JExpression) -> str:
-        return type_of(expression, unresolved)
+        return type_of(expression, unresolved, names)
 
     match node:
         case n.JLiteral(kind="number", text=text):
@@ -84,6 +89,8 @@ def type_of(node: n.JExpression, unresolved: Unresolved | None = None) -> str:
         case n.JLiteral(kind=kind):
             return kind  # boolean, char
         case n.JName(name=name):
+            if names is not None and name in names:
+                return names[name]
             if name in JAVA_LANG_TYPES:
                 return TYPE_REFERENCE
             if unresolved is not None:
