@@ -9,14 +9,15 @@ brace of a block, which the AST does not record) and which lines are blank.
 
 from __future__ import annotations
 
-import bisect
 import re
 from dataclasses import dataclass
 
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.grammar import LINEAR_STRING
+from lightrocks.metamodel.lines import Lines
 
 # textX's STRING rule: a double- or single-quoted literal where only the quote is escaped.
-STRING = re.compile(r'("(\\"|[^"])*")|(\'(\\\'|[^\'])*\')')
+STRING = re.compile(LINEAR_STRING)  # as the grammar matches a string, in constant memory
 
 
 @dataclass(frozen=True)
@@ -38,10 +39,7 @@ class Comments:
     """The comments, braces and blank lines of one text: what the AST does not record."""
 
     def __init__(self, text: str) -> None:
-        self._line_starts = [0] + [i + 1 for i, c in enumerate(text) if c == "\n"]
-        self._blank = {
-            number for number, line in enumerate(text.split("\n"), 1) if not line.strip()
-        }
+        self._lines = Lines(text)
         self._braces: list[tuple[int, str]] = []
         found: list[Comment] = []
         index = 0
@@ -72,12 +70,11 @@ class Comments:
         return Comment(body, line, column, self._line_column(max(start, end - 1))[0], own_line)
 
     def _line_column(self, offset: int) -> tuple[int, int]:
-        line = bisect.bisect_right(self._line_starts, offset)
-        return line, offset - self._line_starts[line - 1] + 1
+        return self._lines.line_column(offset)
 
     def closing_brace(self, position: ast.Position) -> tuple[int, int]:
         """Where the ``}`` matching the first ``{`` at or after ``position`` is."""
-        offset = self._line_starts[position.line - 1] + position.column - 1
+        offset = self._lines.start(position.line) + position.column - 1
         depth = 0
         for where, char in self._braces:
             if where < offset:
@@ -85,8 +82,8 @@ class Comments:
             depth += 1 if char == "{" else -1
             if depth == 0:
                 return self._line_column(where)
-        return (len(self._line_starts) + 1, 0)
+        return (self._lines.count + 1, 0)
 
     def blank(self, line: int) -> bool:
         """Whether source line ``line`` holds nothing but whitespace."""
-        return line in self._blank
+        return 1 <= line <= self._lines.count and not self._lines.text_of(line).strip()

@@ -91,9 +91,10 @@ def _compilable(parser: Parser) -> bool:
 def _skipper(parser: Parser) -> Callable[[str, int], re.Match] | None:
     """A match of the whitespace and comments at a position, as Arpeggio skips them before
     every match: whitespace, then comment after comment, each followed by whitespace. One
-    regular expression does it; ``None`` if the comment rule is not one regex."""
+    regular expression does it, in constant memory; ``None`` if the comment rule is not one
+    regex."""
     spaces = "".join(re.escape(char) for char in parser.ws)
-    alternatives = [f"[{spaces}]"] if parser.skipws and spaces else []
+    alternatives = [f"[{spaces}]++"] if parser.skipws and spaces else []
     comment = parser.comments_model
     if comment is not None:
         if type(comment) is not RegExMatch or comment.suppress:
@@ -106,7 +107,9 @@ def _skipper(parser: Parser) -> Callable[[str, int], re.Match] | None:
         alternatives.append(f"(?:{scoped})")
     if not alternatives:
         return re.compile("").match
-    return re.compile(f"(?:{'|'.join(alternatives)})*").match
+    # Possessive: nothing follows to backtrack for, and a repetition that may backtrack
+    # keeps state for every time it repeats (about 115 bytes for each space of a long run).
+    return re.compile(f"(?:{'|'.join(alternatives)})*+").match
 
 
 def _terminal(rule: Any, position: int, value: str, suppress: bool, extra: Any) -> Terminal:

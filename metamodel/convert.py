@@ -3,17 +3,17 @@
 Each grammar rule ``R`` is handled by a method ``rule_R``; a language subclasses
 :class:`Converter` to add the rules of its own fragment, and the rules of grammar extensions
 come as functions ``(converter, node) -> AST node`` in ``extension_rules``. Positions come
-from the character offsets textX records, turned into line and column with one bisect per
-node.
+from the character offsets textX records, turned into line and column by
+:class:`metamodel.lines.Lines`.
 """
 
 from __future__ import annotations
 
-import bisect
 from collections.abc import Callable, Mapping
 from typing import Any
 
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.lines import Lines
 from lightrocks.metamodel.units import UnitError, lookup
 
 
@@ -26,14 +26,13 @@ class Converter:
     ) -> None:
         self.file = file
         self.extension_rules = extension_rules or {}
-        self._line_starts = [0] + [i + 1 for i, c in enumerate(text) if c == "\n"]
+        self._lines = Lines(text)
 
     # -- infrastructure -------------------------------------------------------------------
 
     def position(self, node: Any) -> ast.Position:
-        offset = getattr(node, "_tx_position", 0)
-        line = bisect.bisect_right(self._line_starts, offset)
-        return ast.Position(self.file, line, offset - self._line_starts[line - 1] + 1)
+        line, column = self._lines.line_column(getattr(node, "_tx_position", 0))
+        return ast.Position(self.file, line, column)
 
     def convert(self, node: Any) -> Any:
         rule = type(node).__name__

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
+from arpeggio import ParsingExpression, RegExMatch
 from textx import TextXSyntaxError, metamodel_from_str
 
 from lightrocks.metamodel.compiled import compile_parser
@@ -75,9 +76,45 @@ def compose(root: Path, *fragments: str, extensions: Iterable[GrammarExtension] 
 def build_metamodel(
     root: Path, fragments: tuple[str, ...], extensions: tuple[GrammarExtension, ...] = ()
 ):
-    """A new textX metamodel of a composed grammar."""
+    """A new textX metamodel of a composed grammar, its strings matched in constant memory
+    (:func:`linear_strings`)."""
     text = compose(root, *fragments, extensions=extensions)
-    return metamodel_from_str(text, autokwd=True, skipws=True)
+    metamodel = metamodel_from_str(text, autokwd=True, skipws=True)
+    linear_strings(metamodel._parser_blueprint.parser_model)
+    return metamodel
+
+
+TEXTX_STRING = r'("(\\"|[^"])*")|(\'(\\\'|[^\'])*\')'
+"""textX's ``STRING``: a quoted text in which a backslash before the quote keeps it open.
+Python's ``re`` keeps backtracking state for every character that the repeated capturing
+group matches: about 180 bytes per character (a 5 MB string literal took 900 MB)."""
+
+LINEAR_STRING = r'"(?:\\"|[^"])*+"|"[\s\S]*\\"' + r"|'(?:\\'|[^'])*+'|'[\s\S]*\\'"
+r"""The same matches as :data:`TEXTX_STRING` in constant memory. ``STRING`` first takes
+every escaped quote and stops at the first quote without a backslash before it; the
+possessive repetition does the same without keeping state to backtrack to. Where no such
+quote follows (the file ends), ``STRING`` backtracks to its last escaped quote and ends
+there, its backslash kept as a character: the second alternative, whose ``[\s\S]*`` is one
+character class and backtracks without memory either. textX reads a match by its group
+only where the pattern has exactly one: the original has four, this one none."""
+
+
+def linear_strings(model: ParsingExpression) -> None:
+    """Match textX's ``STRING`` rule in ``model`` with :data:`LINEAR_STRING` (the rule is
+    shared by every grammar textX builds, so theirs change alike: the matches are equal)."""
+    seen: set[int] = set()
+    pending = [model]
+    while pending:
+        node = pending.pop()
+        if id(node) in seen:
+            continue
+        seen.add(id(node))
+        if isinstance(node, RegExMatch) and node.to_match_regex == TEXTX_STRING:
+            node.to_match_regex = LINEAR_STRING
+            node.compile()
+        pending.extend(node.nodes)
+        if getattr(node, "sep", None) is not None:
+            pending.append(node.sep)
 
 
 _building = threading.Lock()
