@@ -5,15 +5,44 @@ from __future__ import annotations
 
 import bisect
 import re
-from functools import reduce
 from pathlib import Path
 from typing import Any
 
 from lightrocks.languages.umlp import nodes as n
 from lightrocks.metamodel import ast
-from lightrocks.metamodel.grammar import parse, paused_gc
+from lightrocks.metamodel.grammar import SyntaxProblem, parse, paused_gc
+from lightrocks.workbench.depth import (
+    MAX_DEPTH,
+    TOO_DEEP_EXPRESSION,
+    TOO_DEEP_STATES,
+    deepest,
+    deepest_node,
+)
 
 GRAMMAR = Path(__file__).with_name("umlp.tx")
+
+PRECEDENCE = {
+    "||": 1,
+    "&&": 2,
+    "|": 3,
+    "^": 4,
+    "&": 5,
+    "==": 6,
+    "!=": 6,
+    "<": 7,
+    ">": 7,
+    "<=": 7,
+    ">=": 7,
+    "<<": 8,
+    ">>": 8,
+    ">>>": 8,
+    "+": 9,
+    "-": 9,
+    "*": 10,
+    "/": 10,
+    "%": 10,
+}
+"""Java's binary operators by precedence; a higher number binds tighter."""
 
 
 class UMLPConverter:
@@ -272,22 +301,27 @@ class UMLPConverter:
             self.position(node),
         )
 
-    def binary(self, node: Any) -> n.JExpression:
+    def rule_JBinaryExpression(self, node: Any) -> n.JExpression:
+        """Java's precedence over the flat list of operands and operators, left-associative
+        (precedence climbing)."""
         operands = [self.convert(operand) for operand in node.operands]
+        operators = list(node.operators)
+        if not operators:
+            return operands[0]
         where = self.position(node)
-        pairs = zip(node.operators, operands[1:], strict=True)
-        return reduce(lambda left, p: n.JBinary(p[0], left, p[1], where), pairs, operands[0])
+        pending = list(zip(operators, operands[1:], strict=True))
+        pending.reverse()
 
-    rule_JOrExpression = binary
-    rule_JAndExpression = binary
-    rule_JBitOrExpression = binary
-    rule_JXorExpression = binary
-    rule_JBitAndExpression = binary
-    rule_JEqualityExpression = binary
-    rule_JRelationalExpression = binary
-    rule_JShiftExpression = binary
-    rule_JAdditiveExpression = binary
-    rule_JMultiplicativeExpression = binary
+        def climb(left: n.JExpression, minimum: int) -> n.JExpression:
+            while pending and PRECEDENCE[pending[-1][0]] >= minimum:
+                operator, right = pending.pop()
+                level = PRECEDENCE[operator]
+                while pending and PRECEDENCE[pending[-1][0]] > level:
+                    right = climb(right, level + 1)
+                left = n.JBinary(operator, left, right, where)
+            return left
+
+        return climb(operands[0], 0)
 
     def rule_JPrefixExpression(self, node: Any) -> n.JPrefix:
         return n.JPrefix(node.operator, self.convert(node.operand), self.position(node))
@@ -330,7 +364,29 @@ class UMLPConverter:
 
 
 def parse_sc(text: str, file: str) -> n.SCArtifact:
-    """Parse one ``.sc`` text; raises ``metamodel.grammar.SyntaxProblem``."""
-    with paused_gc():
-        tree = parse(GRAMMAR, (), text, file)
-        return UMLPConverter(text, file).convert(tree)
+    """Parse one ``.sc`` text; raises ``metamodel.grammar.SyntaxProblem``, also for a text
+    nested deeper than the parser or the later passes walk (``workbench.depth``)."""
+    try:
+        with paused_gc():
+            tree = parse(GRAMMAR, (), text, file)
+            unit = UMLPConverter(text, file).convert(tree)
+    except RecursionError:
+        where, message = deepest(text, file)
+        raise SyntaxProblem(message, where.line, where.column) from None
+    found = deepest_node(unit)
+    if found is not None:
+        where, _ = found  # its message counts LightRocks' expression nodes, not Java's
+        states = _state_depth(unit.statechart.elements) > MAX_DEPTH
+        message = TOO_DEEP_STATES if states else TOO_DEEP_EXPRESSION
+        raise SyntaxProblem(message, where.line, where.column)
+    return unit
+
+
+def _state_depth(elements: tuple[n.SCElement, ...] | None) -> int:
+    """How deep states nest in ``elements``, without recursion."""
+    deepest_level, pending = 0, [(elements or (), 0)]
+    while pending:
+        items, level = pending.pop()
+        deepest_level = max(deepest_level, level)
+        pending += [(e.body, level + 1) for e in items if isinstance(e, n.SCState) and e.body]
+    return deepest_level

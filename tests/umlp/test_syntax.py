@@ -149,3 +149,52 @@ def test_the_language_comes_through_the_entry_point() -> None:
     unit = language.parse("statechart A { }", "A.sc")
     assert language.declarations(unit) == []  # nothing in the workbench's symbol table
     assert unit.imports == () and unit.declarations == ()
+
+
+def _shape(node: n.JExpression) -> str:
+    """The tree of an expression with every binary operation in brackets."""
+    match node:
+        case n.JBinary(operator=operator, left=left, right=right):
+            return f"({_shape(left)} {operator} {_shape(right)})"
+        case n.JPrefix(operator=operator, operand=operand):
+            return f"{operator}{_shape(operand)}"
+        case n.JConditional(condition=c, then=t, otherwise=o):
+            return f"({_shape(c)} ? {_shape(t)} : {_shape(o)})"
+        case n.JBracket(expression=inner):
+            return f"[{_shape(inner)}]"
+    return node.name if isinstance(node, n.JName) else node.text
+
+
+@pytest.mark.parametrize(
+    ("text", "shape"),
+    [
+        (
+            "a || b && c | d ^ e & f == g < h << i + j * k",
+            ("(a || (b && (c | (d ^ (e & (f == (g < (h << (i + (j * k))))))))))"),
+        ),
+        (
+            "a * b + c << d < e == f & g ^ h | i && j || k",
+            ("((((((((((a * b) + c) << d) < e) == f) & g) ^ h) | i) && j) || k)"),
+        ),
+        ("a - b - c / d / e % f", "((a - b) - (((c / d) / e) % f))"),
+        ("a == b != c < d >= e", "((a == b) != ((c < d) >= e))"),
+        (
+            "!a && -b < (c + d) * e ? f : g ? h : i",
+            ("((!a && (-b < ([(c + d)] * e))) ? f : (g ? h : i))"),
+        ),
+    ],
+)
+def test_java_precedence(text: str, shape: str) -> None:
+    unit = parse_sc(f"statechart A {{ state S [{text}]; }}", "A.sc")
+    assert _shape(unit.statechart.elements[0].invariant) == shape
+
+
+@pytest.mark.parametrize(
+    "guard",
+    ["(" * 150 + "a" + ")" * 150, " + ".join(["a"] * 500)],
+    ids=["brackets", "a long sum"],
+)
+def test_nesting_too_deep_is_a_syntax_problem_not_a_crash(guard: str) -> None:
+    with pytest.raises(SyntaxProblem) as problem:
+        parse_sc(f"statechart D {{ state S [{guard}]; }}", "D.sc")
+    assert problem.value.message.startswith("expression nested too deeply")
