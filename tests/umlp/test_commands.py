@@ -114,7 +114,7 @@ def test_check_and_fmt_know_sc_and_aut(tmp_path: Path, capsys: pytest.CaptureFix
 def test_list_shows_the_language_and_its_cocos(capsys: pytest.CaptureFixture[str]) -> None:
     status, out, _ = run(capsys, "list", "languages")
     assert status == 0
-    assert "umlp  .sc .aut" in out or ("umlp" in out and ".sc" in out)
+    assert "umlp  .sc .aut  UML/P statecharts as MontiCore writes them" in out
     status, out, _ = run(capsys, "list", "cocos")
     assert status == 0
     for code in [f"LR21{i:02d}" for i in (*range(13), 14, 15, 16)]:
