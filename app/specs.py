@@ -18,7 +18,8 @@ from lightrocks.app.adapter_factory import adapter_options
 from lightrocks.app.run import success_outcome
 from lightrocks.app.script import Script
 from lightrocks.app.values import Noise, parameters, parse_delay
-from lightrocks.workbench.generators import load_generator
+from lightrocks.workbench.generators import GenerationError, load_generator
+from lightrocks.workbench.languages import language_for
 
 
 @dataclass(frozen=True)
@@ -32,6 +33,10 @@ class GenerateSpec:
     templates: Path | None = None
 
 
+GENERATED_LANGUAGES = ("lightrocks", "domain")
+"""The languages whose files the generators read: statecharts and their domain interfaces."""
+
+
 def generate_spec(
     models: Sequence[Path],
     search_path: Sequence[Path],
@@ -39,9 +44,18 @@ def generate_spec(
     options: Mapping[str, str] | None = None,
     templates: Path | None = None,
 ) -> GenerateSpec:
-    """A generation request; an unknown target is a ``GenerationError`` before anything is
-    checked."""
+    """A generation request; an unknown target, or a model file of a language the generators
+    do not read (a UML/P ``.sc`` chart: convert it first), is a ``GenerationError`` before
+    anything is checked."""
     load_generator(target)
+    for model in models:
+        language = language_for(model.suffix) if model.is_file() else None
+        if language is not None and language.name not in GENERATED_LANGUAGES:
+            raise GenerationError(
+                f"{model}: the generators read LightRocks statecharts (.lr) and domain files "
+                f"(.lrd), not {language.name} ({model.suffix}); convert it first: "
+                f"lightrocks convert {model} --to lr"
+            )
     return GenerateSpec(tuple(models), tuple(search_path), target, dict(options or {}), templates)
 
 

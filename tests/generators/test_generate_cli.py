@@ -94,3 +94,13 @@ def test_read_only_output_folder(tmp_path, capsys, monkeypatch) -> None:
         assert list(out.iterdir()) == []
     finally:
         out.chmod(0o755)
+
+
+def test_a_uml_p_chart_is_refused_with_the_way_to_convert_it(tmp_path, capsys) -> None:
+    chart = EXAMPLES.parent / "tests" / "umlp" / "models" / "shared" / "Door.sc"
+    out = tmp_path / "out"
+    assert main(["generate", str(chart), "--target", "python", "-o", str(out)]) == 2
+    error = capsys.readouterr().err
+    assert "not umlp (.sc)" in error and f"lightrocks convert {chart} --to lr" in error
+    assert "Traceback" not in error
+    assert not out.exists()
