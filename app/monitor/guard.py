@@ -2,8 +2,10 @@
 
 - **Token**: printed once, in the URL of the first load; that load sets it as a cookie
   (``HttpOnly``, ``SameSite=Strict``: no other site's page sends it) and the page drops it
-  from the address bar. Every other request carries the cookie (tools may send the token as
-  ``?token=``); without either it is refused.
+  from the address bar. Every other request carries the cookie, or (tools) the header
+  ``Authorization: Bearer TOKEN``; the token in the query of any other request than the
+  page's first load is refused, so that it never travels in a URL again (logs, history,
+  shared links).
 - **Host**: a request must name the address served. A page of another site whose name
   resolves to this machine (DNS rebinding) names its own site, and is refused. For a loopback
   address the names are ``127.0.0.1``, ``localhost`` and ``[::1]``; for one open to other
@@ -87,11 +89,22 @@ class Guard:
         return origin is None or origin.lower() == f"http://{host_header.lower()}"
 
     def authorised(self, cookies: Mapping[str, str], query: Mapping[str, str], port: int) -> bool:
-        """The token as the cookie, or as ``?token=``."""
-        for given in (cookies.get(cookie_name(port), ""), query.get("token", "")):
-            if given and secrets.compare_digest(given.encode(), self.token.encode()):
-                return True
-        return False
+        """The token as the cookie, or as ``?token=`` (the studio's check: the monitor takes
+        the token from a URL only on its page's first load, see :meth:`holds_token`)."""
+        return self.holds_token(cookies, None, port) or self.in_query(query)
+
+    def holds_token(self, cookies: Mapping[str, str], authorization: str | None, port: int) -> bool:
+        """The token as the cookie the first load set, or as ``Authorization: Bearer``."""
+        scheme, _, given = (authorization or "").strip().partition(" ")
+        bearer = given.strip() if scheme.lower() == "bearer" else ""
+        return any(self._matches(g) for g in (cookies.get(cookie_name(port), ""), bearer))
+
+    def in_query(self, query: Mapping[str, str]) -> bool:
+        """The token as ``?token=``: what the printed URL carries to the page's first load."""
+        return self._matches(query.get("token", ""))
+
+    def _matches(self, given: str) -> bool:
+        return bool(given) and secrets.compare_digest(given.encode(), self.token.encode())
 
     def cookie(self, port: int) -> str:
         """The ``Set-Cookie`` value that hands the token to the page's later requests."""

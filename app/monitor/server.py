@@ -1,6 +1,7 @@
 """The monitor's web server: the page, the task's SVG, a websocket of the run's records and
 the control requests; every request carries the token printed with the URL, as the cookie
-the page's first load sets (see :mod:`.guard`).
+the page's first load sets or (tools) as ``Authorization: Bearer``; only that first load
+takes it in the URL (see :mod:`.guard`).
 
 uvicorn serves on a daemon thread of its own, so the run's loop never waits for a browser.
 """
@@ -22,6 +23,10 @@ from lightrocks.app.monitor.guard import Guard, serve
 PUSH_PERIOD = 0.1
 """Seconds between two pushes of new records to a page."""
 SCRIPTS = ("monitor.js", "diagram.js", "plots.js")
+NOT_IN_THE_URL = (
+    "the token goes in the cookie the page's first load sets, or in an 'Authorization: "
+    "Bearer' header; only the page's first load takes it in the URL"
+)
 
 
 def parse_address(text: str) -> tuple[str, int]:
@@ -56,15 +61,23 @@ class Monitor:
         from starlette.websockets import WebSocket
 
         def allowed(request: Request | WebSocket) -> bool:
+            """The token as the cookie or an ``Authorization: Bearer`` header, never in the
+            URL (only the page's first load may carry it there)."""
             port = request.scope["server"][1]
-            return guard.authorised(request.cookies, request.query_params, port)
+            return guard.holds_token(request.cookies, request.headers.get("authorization"), port)
+
+        def refusal(request: Request | WebSocket) -> str:
+            if "token" in request.query_params:
+                return NOT_IN_THE_URL
+            return "a valid token is needed"
 
         page = files("lightrocks.app.monitor.page")
 
         async def index(request: Request) -> Response:
             """The page; its first load, with the token in the URL, sets the cookie that
-            the page's later requests carry (the page then drops the token from the URL)."""
-            if not allowed(request):
+            the page's later requests carry (the page then drops the token from the URL).
+            The page's text is the same for everyone: the token is in no link of it."""
+            if not (allowed(request) or guard.in_query(request.query_params)):
                 return Response("a valid token is needed", status_code=403)
             text = page.joinpath("index.html").read_text(encoding="utf-8")
             cookie = {"Set-Cookie": guard.cookie(request.scope["server"][1])}
@@ -80,12 +93,12 @@ class Monitor:
 
         async def task_svg(request: Request) -> Response:
             if not allowed(request):
-                return Response("a valid token is needed", status_code=403)
+                return Response(refusal(request), status_code=403)
             return Response(self.svg, media_type="image/svg+xml")
 
         async def control(request: Request) -> Response:
             if not allowed(request):
-                return JSONResponse({"error": "a valid token is needed"}, status_code=403)
+                return JSONResponse({"error": refusal(request)}, status_code=403)
             if self.replay is not None:
                 return JSONResponse({"error": "a replay has no run to control"}, status_code=409)
             action = request.path_params["action"]

@@ -44,7 +44,9 @@ class LevelPage(Page):
 
 def test_the_replay_serves_one_picture_per_level(recorded: Path, launch) -> None:
     url, _, _ = launch("replay", str(recorded))
-    with urllib.request.urlopen(url.replace("/?", "/task.svg?"), timeout=60) as answer:
+    base, _, token = url.partition("?token=")
+    asked = urllib.request.Request(base + "task.svg", headers={"Authorization": f"Bearer {token}"})
+    with urllib.request.urlopen(asked, timeout=60) as answer:
         bundle = answer.read().decode()
     assert '"root": "din_rail_ahead.tasks.AssembleRailAhead"' in bundle
     keys = re.findall(r'"key": "([^"]+)"', bundle)

@@ -87,8 +87,12 @@ def test_100000_skill_spans_are_replayed_in_time(long_trace: Path, tmp_path: Pat
             line = process.stderr.readline()
             assert line, "replay ended"
             url = line.split()[1] if line.startswith("monitor: ") else ""
-        stream = url.replace("http", "ws", 1).replace("/?", "/stream?")
-        with websocket.connect(stream, max_size=None, open_timeout=LIMIT) as socket:
+        base, _, token = url.partition("?token=")
+        stream = base.replace("http", "ws", 1) + "stream"
+        bearer = {"Authorization": f"Bearer {token}"}
+        with websocket.connect(
+            stream, max_size=None, open_timeout=LIMIT, additional_headers=bearer
+        ) as socket:
             replayed = json.loads(socket.recv(timeout=LIMIT))["replay"]
         assert len(replayed) == 5 * 100_000 + 4
         assert time.monotonic() - started < LIMIT

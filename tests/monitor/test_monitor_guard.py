@@ -1,6 +1,7 @@
 """The monitor driven by a hostile client: a wrong ``Host`` (DNS rebinding), a foreign
-``Origin``, the token only in a ``Referer``, a page that would frame it, an address other
-machines reach without ``--monitor-public``. Each probe is refused and followed by a valid
+``Origin``, the token only in a ``Referer``, the token in the URL of anything but the page's
+first load, a page that would frame it, an address other machines reach without
+``--monitor-public``. Each probe is refused and followed by a valid
 request that must be answered. Every server here listens on 127.0.0.1 only."""
 
 from __future__ import annotations
@@ -74,8 +75,11 @@ class Served:
 
     def stream(self, host: str = "", **headers: str):
         """The page's websocket; ``host`` names another host than the one connected to."""
+        return self.stream_at("/stream", host, **headers)
+
+    def stream_at(self, path: str, host: str = "", **headers: str):
         connection = socket.create_connection(("127.0.0.1", self.port), timeout=TIMEOUT)
-        uri = f"ws://{host or self.host}/stream"
+        uri = f"ws://{host or self.host}{path}"
         return websocket.connect(
             uri, sock=connection, additional_headers=headers, open_timeout=TIMEOUT, max_size=None
         )
@@ -160,7 +164,56 @@ def test_a_wrong_token_or_cookie_opens_nothing(served: Served) -> None:
     wrong = f"{cookie_name(served.port)}=x{served.token}"
     assert served.ask("/task.svg", Cookie=wrong)[0] == 403
     assert served.ask(f"/task.svg?token=x{served.token}")[0] == 403
-    assert served.ask(f"/task.svg?token={served.token}")[0] == 200  # tools may use the query
+    assert served.ask("/task.svg", Authorization=f"Bearer x{served.token}")[0] == 403
+    assert served.ask("/task.svg", Authorization=f"Basic {served.token}")[0] == 403
+    other_port = f"{cookie_name(served.port + 1)}={served.token}"
+    assert served.ask("/task.svg", Cookie=other_port)[0] == 403
+    served.valid()
+
+
+@pytest.mark.parametrize(
+    ("path", "method"),
+    [("/task.svg", "GET"), ("/control/break?at=ScrewTask", "POST"), ("/control/abort", "POST")],
+)
+def test_the_token_in_the_url_opens_no_endpoint_but_the_first_load(
+    served: Served, path: str, method: str
+) -> None:
+    """Only the page's first load takes the token in its URL: a tool sends it as a header,
+    the page as the cookie that load set, so it travels in no other URL (logs, history)."""
+    joined = "&" if "?" in path else "?"
+    code, _, body = served.ask(f"{path}{joined}token={served.token}", method)
+    assert code == 403
+    assert b"Authorization" in body and b"first load" in body
+    assert served.process.poll() is None, "the abort went through"
+    with pytest.raises(Exception, match="403"), served.stream_at(f"/stream?token={served.token}"):
+        pass
+    served.valid()
+
+
+def test_a_tool_sends_the_token_as_a_bearer_header(served: Served) -> None:
+    bearer = {"Authorization": f"Bearer {served.token}"}
+    code, _, body = served.ask("/task.svg", **bearer)
+    assert code == 200 and b"<svg" in body
+    code, _, body = served.ask("/control/break?at=ScrewTask.Carry", "POST", **bearer)
+    assert code == 200 and "paused" in json.loads(body)
+    with served.stream(**bearer) as opened:
+        assert "history" in json.loads(opened.recv(timeout=TIMEOUT))
+    code, _, body = served.ask("/", **bearer)
+    assert code == 200 and b"LightRocks monitor" in body
+    served.valid()
+
+
+def test_the_page_echoes_the_token_nowhere(served: Served) -> None:
+    token = served.token.encode()
+    code, headers, body = served.ask(f"/?token={served.token}")
+    assert code == 200 and token not in body
+    assert "location" not in {k.lower() for k in headers}
+    for script in ("/monitor.js", "/diagram.js", "/plots.js", "/monitor.css"):
+        code, _, text = served.ask(script, Cookie=served.cookie())
+        assert code == 200 and token not in text
+        assert b"token=" not in text, script
+    code, _, svg = served.ask("/task.svg", Cookie=served.cookie())
+    assert code == 200 and token not in svg
     served.valid()
 
 

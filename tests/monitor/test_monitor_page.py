@@ -309,7 +309,9 @@ def test_replay_with_the_time_slider(launch, browser, tmp_path: Path) -> None:
     move_to(drive_in + 0.05)
     page.until(lambda: page.active.startswith("ScrewTask/DriveIn"))
     assert_shows_the_run(page.screenshot(tmp_path / "replay.png"))
-    refused = urllib.request.Request(url.replace("/?", "/control/resume?"), method="POST")
+    base, _, token = url.partition("?token=")
+    bearer = {"Authorization": f"Bearer {token}"}
+    refused = urllib.request.Request(base + "control/resume", method="POST", headers=bearer)
     with pytest.raises(urllib.error.HTTPError) as error:
         urllib.request.urlopen(refused, timeout=30)
     assert error.value.code == 409
