@@ -69,10 +69,13 @@ def _split(header: str) -> tuple[str, str]:
 
 
 class Guard:
-    def __init__(self, host: str, token: str) -> None:
+    def __init__(self, host: str, token: str, *, url_once: bool = False) -> None:
         self.host = host.lower()
         """The address served, as given to ``--monitor``."""
         self.token = token
+        self.url_once = url_once
+        """Only the page's first load takes the token in its URL (the monitor's servers);
+        otherwise any request may (the studio's, until it follows)."""
 
     def host_allowed(self, header: str, port: int) -> bool:
         """Whether the ``Host`` header names the address served, with its port."""
@@ -89,8 +92,8 @@ class Guard:
         return origin is None or origin.lower() == f"http://{host_header.lower()}"
 
     def authorised(self, cookies: Mapping[str, str], query: Mapping[str, str], port: int) -> bool:
-        """The token as the cookie, or as ``?token=`` (the studio's check: the monitor takes
-        the token from a URL only on its page's first load, see :meth:`holds_token`)."""
+        """The token as the cookie, or as ``?token=`` (the studio's check; the monitor's
+        requests go through :meth:`admits`)."""
         return self.holds_token(cookies, None, port) or self.in_query(query)
 
     def holds_token(self, cookies: Mapping[str, str], authorization: str | None, port: int) -> bool:
@@ -98,6 +101,15 @@ class Guard:
         scheme, _, given = (authorization or "").strip().partition(" ")
         bearer = given.strip() if scheme.lower() == "bearer" else ""
         return any(self._matches(g) for g in (cookies.get(cookie_name(port), ""), bearer))
+
+    def admits(
+        self, cookies: Mapping[str, str], authorization: str | None, query: Mapping[str, str],
+        port: int,
+    ) -> bool:  # fmt: skip
+        """A request other than the page's first load: the cookie or the bearer header, or
+        the query too where the token is not taken from a URL once only."""
+        held = self.holds_token(cookies, authorization, port)
+        return held or (not self.url_once and self.in_query(query))
 
     def in_query(self, query: Mapping[str, str]) -> bool:
         """The token as ``?token=``: what the printed URL carries to the page's first load."""
@@ -170,15 +182,19 @@ async def _refuse(scope: dict[str, Any], send: Any, reason: str) -> None:
     await send({"type": "http.response.body", "body": body})
 
 
-def serve(make_app: Callable[[Guard], Any], host: str, port: int, token: str, name: str) -> str:
+def serve(
+    make_app: Callable[[Guard], Any], host: str, port: int, token: str, name: str,
+    url_once: bool = False,
+) -> str:  # fmt: skip
     """Serve ``make_app(guard)`` behind its guard on a daemon thread named ``name``; the URL
-    with the token once it listens (the monitor and the studio start alike)."""
+    with the token once it listens (the monitor and the studio start alike; ``url_once``:
+    see :attr:`Guard.url_once`)."""
     import threading
     import time
 
     import uvicorn
 
-    guard = Guard(host, token)
+    guard = Guard(host, token, url_once=url_once)
     bind = host.strip("[]")
     config = uvicorn.Config(Guarded(make_app(guard), guard), host=bind, port=port,
                             log_level="warning")  # fmt: skip

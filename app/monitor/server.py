@@ -61,13 +61,15 @@ class Monitor:
         from starlette.websockets import WebSocket
 
         def allowed(request: Request | WebSocket) -> bool:
-            """The token as the cookie or an ``Authorization: Bearer`` header, never in the
-            URL (only the page's first load may carry it there)."""
+            """The token as the cookie or an ``Authorization: Bearer`` header, not in the
+            URL (only the page's first load may carry it there; the studio, which mounts
+            this app with a guard of its own, still takes it there too)."""
             port = request.scope["server"][1]
-            return guard.holds_token(request.cookies, request.headers.get("authorization"), port)
+            authorization = request.headers.get("authorization")
+            return guard.admits(request.cookies, authorization, request.query_params, port)
 
         def refusal(request: Request | WebSocket) -> str:
-            if "token" in request.query_params:
+            if guard.url_once and "token" in request.query_params:
                 return NOT_IN_THE_URL
             return "a valid token is needed"
 
@@ -174,4 +176,4 @@ class Monitor:
 
     def serve(self, host: str, port: int) -> str:
         """Start serving on a daemon thread; the URL with the token once it listens."""
-        return serve(self.app, host, port, self.token, "monitor")
+        return serve(self.app, host, port, self.token, "monitor", url_once=True)

@@ -238,3 +238,16 @@ def test_a_public_monitor_still_checks_the_host() -> None:
     assert loopback.host_allowed("localhost:8765", 8765)
     assert loopback.host_allowed("[::1]:8765", 8765)
     assert not loopback.host_allowed("192.0.2.7:8765", 8765)
+
+
+def test_a_guard_takes_the_token_from_a_url_once_only_where_it_is_told() -> None:
+    strict, lenient = Guard("127.0.0.1", "t", url_once=True), Guard("127.0.0.1", "t")
+    cookie, query = {cookie_name(8765): "t"}, {"token": "t"}
+    for guard in (strict, lenient):
+        assert guard.admits(cookie, None, {}, 8765)
+        assert guard.admits({}, "Bearer t", {}, 8765) and guard.admits({}, "bearer  t ", {}, 8765)
+        assert not guard.admits({}, "Bearer x", {}, 8765) and not guard.admits({}, "t", {}, 8765)
+        assert not guard.admits({cookie_name(8766): "t"}, None, {}, 8765)
+        assert guard.in_query(query)  # the page's first load
+    assert not strict.admits({}, None, query, 8765)
+    assert lenient.admits({}, None, query, 8765)  # the studio's, until it follows
