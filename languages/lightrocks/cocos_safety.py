@@ -4,6 +4,7 @@ every path a constant takes to a device command (defaults, bindings)."""
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Iterator
 
@@ -48,14 +49,21 @@ def timeout_is_duration(context: object) -> Iterator[Finding]:
             continue
         match = DURATION.fullmatch(stereotype.value or "")
         try:
-            timed = match is not None and lookup(match.group(2)).dimension == TIME
+            unit = lookup(match.group(2)) if match is not None else None
         except UnitError:
-            timed = False
-        if not timed:
+            unit = None
+        if unit is None or unit.dimension != TIME:
             yield (
                 stereotype.position,
                 f"timeout '{stereotype.value}' is not a duration",
                 'write a number with a time unit, e.g. <<timeout="8 s">>',
+            )
+        elif not math.isfinite(float(match.group(1)) * unit.factor):
+            yield (
+                stereotype.position,
+                f"timeout '{stereotype.value}' is beyond the largest number a Real holds "
+                "(about 1.8e308 in SI units)",
+                'write a duration a run can wait, e.g. <<timeout="8 s">>',
             )
 
 

@@ -66,6 +66,16 @@ def test_a_constant_beyond_a_real_in_a_command_default_is_a_finding(tmp_path: Pa
     assert "Cell.lrd:4:27: error LR0404: '1e200 mm * 1e200' computes inf: " + BEYOND in out
 
 
+@pytest.mark.parametrize("budget", ["1e999 s", "1e307 min"])
+def test_a_timeout_beyond_a_real_is_a_finding(tmp_path: Path, capsys, budget: str) -> None:
+    write_models(
+        tmp_path, {"Big": chart("1").replace("<<action>>", f'<<action, timeout="{budget}">>')}
+    )
+    assert main(["check", str(tmp_path)]) == 1
+    out = " ".join(capsys.readouterr().out.split())
+    assert f"error LR0501: timeout '{budget}' is {BEYOND}" in out, out
+
+
 def test_an_object_attribute_beyond_a_real_is_reported_once(tmp_path: Path, capsys) -> None:
     write_models(tmp_path, {})
     domain = DOMAIN.replace("arm : Arm;", "arm : Arm;\n  object part { Real w = 1e999; }")
