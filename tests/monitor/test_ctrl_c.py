@@ -86,7 +86,12 @@ def test_ctrl_c_while_waiting_ends_the_pause() -> None:
         interrupted.set()
         signal.pthread_kill(waiting, signal.SIGINT)
 
-    threading.Thread(target=press_ctrl_c, daemon=True).start()
-    with pytest.raises(KeyboardInterrupt):
-        control.wait()
+    # Python's own handler, as `lightrocks run` has it: a test worker may ignore SIGINT
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        threading.Thread(target=press_ctrl_c, daemon=True).start()
+        with pytest.raises(KeyboardInterrupt):
+            control.wait()
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert interrupted.is_set() and control.ending and not control.paused
