@@ -14,9 +14,10 @@ EXAMPLES = ROOT / "examples"
 FOLDERS = [
     EXAMPLES,
     *sorted(ROOT.glob("extensions/*/models")),
-    *sorted(p for p in ROOT.glob("tests/**/models") if p.is_dir()),
+    *sorted(p for p in ROOT.glob("tests/**/models") if p.is_dir() and any(p.rglob("*.lr"))),
 ]
-"""Each one a model path of its own (its packages are its sub-folders)."""
+"""Each one a model path of its own (its packages are its sub-folders) that holds
+LightRocks charts (the UML/P models of tests/umlp are drawn once converted)."""
 
 
 def components(folder: Path) -> list[Component]:
