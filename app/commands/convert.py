@@ -28,6 +28,7 @@ from lightrocks.workbench import report
 CONVERSIONS: dict[tuple[str, str], str] = {
     (".sc", "lr"): "lightrocks.languages.umlp.interchange:convert_sc_to_lr",
     (".lr", "sc"): "lightrocks.languages.umlp.interchange:convert_lr_to_sc",
+    (".scxml", "lr"): "lightrocks.generators.scxml.reader:convert_scxml_to_lr",
 }
 """(source suffix, target) -> ``module:function`` of the conversion."""
 

@@ -695,18 +695,25 @@ class Writer:
             cond = self._in(chosen) if transition.stimulus else None
             yield from self.take(node.parent, transition, event, cond)
             return
+        plain = self.translate.cond(guard)
         per_final = [self._exits_after(node, final) for final in chosen]
         if all(v == per_final[0] for v in per_final):
-            values = per_final[0]
-            cond = _conjunction(
-                self._in(chosen) if transition.stimulus else None,
-                self.translate.cond(guard, values),
-            )
-            yield from self.take(node.parent, transition, event, cond)
+            read = self.translate.cond(guard, per_final[0])
+            cond = _conjunction(self._in(chosen) if transition.stimulus else None, read)
+            for element in self.take(node.parent, transition, event, cond):
+                if read != plain:
+                    element.set(lr("guard"), plain)
+                yield element
             return
-        for final, values in zip(chosen, per_final, strict=True):
+        for number, (final, values) in enumerate(zip(chosen, per_final, strict=True)):
             cond = _conjunction(self._in([final]), self.translate.cond(guard, values))
-            yield from self.take(node.parent, transition, event, cond)
+            for element in self.take(node.parent, transition, event, cond):
+                element.set(lr("guard"), plain)
+                if not transition.stimulus:
+                    element.set(lr("outcome"), "any")
+                if number:
+                    element.set(lr("helper"), "outcome")
+                yield element
 
     def _in(self, finals: Sequence[Node]) -> str:
         tests = [f"In('{self.id(f)}')" for f in finals]
@@ -815,12 +822,15 @@ class Writer:
                     transition.target_position, f"no history '{transition.target_history}'"
                 )
             flag = self.flags.get(target)
+            into = self.id(history)
+            if act and transition.action:
+                into = self._detour(owner, into)
             if flag is None:
-                elements.append(self._element(event, cond, self.id(history), [], internal))
+                elements.append(self._element(event, cond, into, [], internal))
             else:
                 remembered = _conjunction(cond, f"not {flag}")
                 forgotten = _conjunction(cond, flag)
-                elements.append(self._element(event, remembered, self.id(history), [], internal))
+                elements.append(self._element(event, remembered, into, [], internal))
                 elements.append(
                     self._element(event, forgotten, self.id(target), [], internal, "history")
                 )
@@ -830,6 +840,17 @@ class Writer:
             for element in elements:
                 self._actions(element, transition.action)
         return elements
+
+    def _detour(self, owner: Node, history: str) -> str:
+        """A state in ``owner`` left at once for ``history``: a transition with actions goes
+        there instead of into the history itself. Equivalent in SCXML; python-statemachine
+        3.2.2 runs the actions of a transition into a history twice (it counts the
+        transition as the history's default content as well)."""
+        helper_id = self.names.helper(self.id(owner), f"history{next(self._posts)}")
+        helper = ET.Element(q("state"), {"id": helper_id, lr("helper"): "history-action"})
+        helper.append(self._element(None, None, history, []))
+        self.helpers.setdefault(owner, []).append(helper)
+        return helper_id
 
     def _element(
         self,

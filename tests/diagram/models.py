@@ -17,7 +17,7 @@ FOLDERS = [
     *sorted(p for p in ROOT.glob("tests/**/models") if p.is_dir() and any(p.rglob("*.lr"))),
 ]
 """Each one a model path of its own (its packages are its sub-folders) that holds
-LightRocks charts (the UML/P models of tests/umlp are drawn once converted)."""
+LightRocks charts (tests/umlp/models holds UML/P charts, which the dot target does not read)."""
 
 
 def components(folder: Path) -> list[Component]:
