@@ -1,0 +1,41 @@
+"""Plain charts checked, generated to Python (the LightRocks runtime) and to SCXML."""
+
+from __future__ import annotations
+
+import itertools
+from pathlib import Path
+
+import pytest
+
+from lightrocks.app.loading import component_class, generated_package
+from lightrocks.generators.scxml import document
+from lightrocks.generators.scxml.writer import Document
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.workbench import report
+from lightrocks.workbench.check import CheckContext, check
+
+_counter = itertools.count()
+
+
+def generated(context: CheckContext, file: Path, name: str, cache: Path) -> tuple[type, Document]:
+    """The runtime class and the SCXML document of the chart ``name`` of a checked model."""
+    component = analysis(context).models.component(name)
+    assert component is not None, name
+    package = generated_package(context, [file], cache)
+    return component_class(package, name), document(component)
+
+
+@pytest.fixture
+def pair(tmp_path: Path):
+    """``pair(name, text)`` -> (class, SCXML document) of the plain chart ``d.<name>``."""
+
+    def make(name: str, text: str) -> tuple[type, Document]:
+        root = tmp_path / f"models{next(_counter)}"
+        (root / "d").mkdir(parents=True)
+        file = root / "d" / f"{name}.lr"
+        file.write_text(text, encoding="utf-8")
+        context = check([root])
+        assert not context.diagnostics.has_errors, report.text(context.diagnostics.items)
+        return generated(context, file, f"d.{name}", tmp_path / "cache")
+
+    return make
