@@ -30,7 +30,6 @@ id renamed to a LightRocks name, a parameter's type taken from its value.
 from __future__ import annotations
 
 import ast as py
-import keyword
 import re
 import xml.parsers.expat
 from collections.abc import Iterator
@@ -123,11 +122,10 @@ def parse_xml(text: str) -> Element:
             stack[-1].text += data
 
     def doctype(*_args) -> None:
-        raise Problem(
-            parser.CurrentLineNumber,
-            parser.CurrentColumnNumber + 1,
-            "a <!DOCTYPE> is not read: its entities could expand without bound",
-        )
+        at = text.find("<!DOCTYPE")
+        line = text.count("\n", 0, at) + 1 if at >= 0 else parser.CurrentLineNumber
+        column = at - text.rfind("\n", 0, at) if at >= 0 else 1
+        raise Problem(line, column, "a <!DOCTYPE> is not read: its entities could expand")
 
     parser.StartElementHandler = start
     parser.EndElementHandler = end
@@ -182,7 +180,7 @@ def _identifier(text: str) -> str:
     name = re.sub(r"\W", "_", text)
     if not name or not _IDENTIFIER.fullmatch(name):
         name = "s_" + name
-    return f"{name}_" if name in _KEYWORDS or keyword.iskeyword(name) else name
+    return f"{name}_" if name in _KEYWORDS else name
 
 
 class Reader:
@@ -196,6 +194,7 @@ class Reader:
         self.name_of: dict[str, str] = {}  # id -> LightRocks name
         self.taken: dict[str, set[str]] = {}
         self._timer_cache: dict[int, list[_Timer]] = {}
+        self.wrapper_id = ""
         self.generated = False  # written by the LightRocks SCXML target
 
     # -- findings -----------------------------------------------------------------------
@@ -224,6 +223,7 @@ class Reader:
         chart_name = self.rename(root, name)
         tops = [c for c in root.scxml() if c.tag in ("state", "parallel", "final")]
         wrapper = self._wrapper(root, tops, name)
+        self.wrapper_id = wrapper.get("id") if wrapper is not None else ""
         self._index(root, wrapper)
         parameters = self._datamodel(root)
         chart = _Scope("", root)
@@ -242,7 +242,7 @@ class Reader:
             chart.id = wrapper.get("id")
             chart.element = wrapper
             budget = self._state_body(chart, wrapper, chart_root=True)
-            if budget is not None:
+            if budget is not None and not any(s.name == "timeout" for s in stereotypes):
                 stereotypes.append(ast.Stereotype("timeout", budget))
         else:
             initial = self._initial(root, tops)
@@ -254,7 +254,7 @@ class Reader:
         return ast.StatechartUnit(root.lr("package") or "", (), statechart)
 
     def rename(self, element: Element, name: str) -> str:
-        if _IDENTIFIER.fullmatch(name) and name not in _KEYWORDS and not keyword.iskeyword(name):
+        if _IDENTIFIER.fullmatch(name) and name not in _KEYWORDS:
             return name
         renamed = _identifier(name)
         self.finding(element, RENAMED, Severity.INFO, f"'{name}' is named '{renamed}'")
@@ -358,8 +358,32 @@ class Reader:
             )
             return None
         if not data.lr("type"):
-            self.finding(data, RENAMED, Severity.INFO, f"'{name}' is a {kind} (from its value)")
+            self.finding(data, RENAMED, Severity.INFO, f"'{name}' is declared {kind}, as its value")
+        elif kind not in _TYPES.values():
+            self.finding(
+                data,
+                DROPPED,
+                Severity.WARNING,
+                f"'{name}' is a {kind}, whose unit SCXML does not carry: it is declared Real, "
+                "and its values are SI values without unit",
+            )
+            kind = "Real"
         return ast.Parameter(kind, name, default)
+
+    def paths(self, chart: str) -> dict[str, tuple[str, ...]]:
+        """State id -> LightRocks path (chart name first), as the runtime names states."""
+        found = {}
+        for identifier in self.name_of:
+            path, current = [], identifier
+            while current:
+                path.insert(0, self.name_of[current])
+                current = self.scope_of.get(current, "")
+                if current == self.wrapper_id:
+                    break
+            found[identifier] = (chart, *path)
+        if self.wrapper_id:
+            found[self.wrapper_id] = (chart,)
+        return found
 
     # -- states -------------------------------------------------------------------------
 
@@ -435,6 +459,16 @@ class Reader:
                     "a history whose default is not the initial state, or has actions: a "
                     "LightRocks history without memory enters its state as usual",
                 )
+        finals = [c for c in scope.element.all("final") if not c.lr("helper")]
+        if finals and not self.generated:
+            self.finding(
+                element,
+                DROPPED,
+                Severity.WARNING,
+                "a history beside final states: LightRocks forgets what was active when the "
+                "state was left through a final state and enters it at its initial state, where "
+                "SCXML enters that final state again",
+            )
         scope.body.append(ast.Pseudostate(kind, name))
 
     def _final_content(self, element: Element, allow_entry: bool):

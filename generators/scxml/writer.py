@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 import xml.etree.ElementTree as ET
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
@@ -355,9 +356,8 @@ class Writer:
         ]
         if events:
             root.set(lr("events"), " ".join(event_name(e) for e in events))
-        kept = [s for s in self.chart_ast.stereotypes if s.name != "timeout"]
-        if kept:
-            root.set(lr("stereotypes"), stereotype_text(kept))
+        if self.chart_ast.stereotypes:
+            root.set(lr("stereotypes"), stereotype_text(self.chart_ast.stereotypes))
         datamodel = self._datamodel()
         if len(datamodel):
             root.append(datamodel)
@@ -482,9 +482,21 @@ class Writer:
             ET.SubElement(
                 onentry,
                 q("send"),
-                {"event": event, "id": self._send_id(node, index), "delay": _delay(delay, source)},
+                {
+                    "event": event,
+                    "id": self._send_id(node, index),
+                    "delay": self._delay(delay, source),
+                },
             )
         return onentry
+
+    def _delay(self, seconds: float, source: object) -> str:
+        """The CSS2 time SCXML takes: in the unit the model wrote, else milliseconds."""
+        if source == "budget":
+            written = re.fullmatch(r"\s*(\d+(?:\.\d+)?)\s*(ms|s)\s*", self.budget.value or "")
+            if written is not None:
+                return written.group(1) + written.group(2)
+        return _delay(seconds, source)
 
     def _history(self, node: Node) -> ET.Element:
         parent = node.parent

@@ -21,6 +21,7 @@ import statemachine.event_data as event_data
 from statemachine.engines.sync import SyncEngine
 from statemachine.io import load
 
+from lightrocks.generators.python.names import identifier
 from lightrocks.generators.scxml.names import event_name
 from lightrocks.generators.scxml.writer import Document
 
@@ -108,7 +109,7 @@ class Machine:
 
 
 def lightrocks_observation(chart, variables: Sequence[str]) -> Observation:
-    values = None if chart.outcome else tuple(getattr(chart, v) for v in variables)
+    values = None if chart.outcome else tuple(getattr(chart, identifier(v)) for v in variables)
     return tuple(sorted(chart.active_paths)), values
 
 
