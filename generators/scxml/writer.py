@@ -365,6 +365,7 @@ class Writer:
         for end in self.ends.values():
             root.append(end)
         if self.refusals:
+            self.refusals.sort(key=lambda r: (r.position.line, r.position.column))
             first = self.refusals[0]
             first.refusals = list(self.refusals)  # type: ignore[attr-defined]
             raise first
@@ -997,4 +998,7 @@ def _delay(seconds: float, source: object) -> str:
 
 
 def _number(value: float) -> str:
-    return str(int(value)) if float(value).is_integer() else repr(value)
+    """12 significant digits: ``3 * 100 ms`` is 300 ms, not the 300.00000000000006 ms that
+    the product of the doubles 3 and 0.1 s gives."""
+    text = format(value, ".12g")
+    return text if "e" not in text else repr(value)
