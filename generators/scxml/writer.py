@@ -936,11 +936,9 @@ class Writer:
             handlers = [t for t in owner.transitions if t.source == child.name]
             handlers = [t for t in handlers if t.stimulus == "error"]
             event = ERROR_EVENT + self.id(child)
-            exits = self._values(child.exit)
-            for handler in handlers:
-                cond = None
-                if handler.guard is not None:
-                    cond = self.translate.cond(handler.guard, exits)
+            for handler in handlers:  # the failed child has been left: as in LightRocks,
+                guard = handler.guard  # the guard sees what its exit actions wrote
+                cond = self.translate.cond(guard) if guard is not None else None
                 yield from self.take(owner, handler, event, cond, internal=True)
         for child in self.failing.get(owner, []):
             handlers = [t for t in owner.transitions if t.source == child.name]
@@ -953,13 +951,6 @@ class Writer:
                 yield self._element(
                     ERROR_EVENT + self.id(child), None, target, content, helper="error"
                 )
-
-    def _values(self, statements: Sequence[ast.Statement]) -> dict[str, str]:
-        values: dict[str, str] = {}
-        for statement in statements:
-            if isinstance(statement, ast.Assignment) and isinstance(statement.target, ast.Name):
-                values[statement.target.name] = self.translate.cond(statement.value, values)
-        return values
 
     def _chart_transitions(self, chart: Node) -> Iterator[ET.Element]:
         if chart.completes():
