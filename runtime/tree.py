@@ -62,7 +62,9 @@ def timed_events(state: State) -> tuple[tuple[State, Transition], ...]:
     in which they fire at one deadline); each with the state its delay belongs to."""
     parent = state.parent
     leaving = parent.transitions_from(state.name) if parent is not None else ()
-    budget = [(state, BUDGET_SPENT)] if getattr(state, "BUDGET", None) is not None else []
+    # a composite's budget is a time event; an action's BUDGET is its command's own
+    spends = isinstance(state, Composite) and state.BUDGET is not None
+    budget = [(state, BUDGET_SPENT)] if spends else []
     return tuple(
         [(state, t) for t in state.INTERNAL if t.delay is not None]
         + budget

@@ -49,3 +49,14 @@ def test_the_budget_of_the_top_statechart_ends_the_run(build) -> None:
     assert chart.outcome == "timeout"
     assert chart.trace[-1]["kind"] == "finished"
     assert chart.trace[-1]["outcome"] == "timeout"
+
+
+def test_an_actions_budget_stays_its_commands_and_arms_no_time_event(build) -> None:
+    """An action's ``BUDGET`` is its command's: the command ends with ``timeout`` itself,
+    never preempted by a time event at the same deadline."""
+    chart = build({"Slow": SLOW.replace('<<skill, timeout="1 s">>', "<<skill>>")}, "Slow")
+    run = chart().start(DryRunAdapter(duration=5.0))
+    outcomes = [(r["state"], r["outcome"]) for r in run.trace if r["kind"] == "outcome"]
+    assert ("Slow/M", "timeout") in outcomes
+    assert not [o for o in outcomes if o[1] == "preempted"]
+    assert run.trace[-1]["time"] == pytest.approx(2.0)  # the device's <<timeout="2 s">>
