@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import statemachine.engines.sync as sync_engine
 import statemachine.event_data as event_data
+from statemachine.engines.base import BaseEngine
 from statemachine.engines.sync import SyncEngine
 from statemachine.io import load
 
@@ -53,17 +54,40 @@ def _take_due_external_event(self, first_result):
     return True, first_result
 
 
+RESTORED: list[str] = []
+"""Ids of final states of regions that a deep history entered again (see
+:func:`_add_history_states_to_enter`)."""
+
+
+def _region_final(state) -> bool:
+    region = state.parent
+    return bool(state.final and region is not None and region.parent and region.parent.parallel)
+
+
+_ORIGINAL_HISTORY = BaseEngine._add_history_states_to_enter
+
+
+def _add_history_states_to_enter(self, info, state, *args):
+    """python-statemachine's own, noting the final states of regions it enters again."""
+    if state.type.is_deep:
+        remembered = self.sm.history_values.get(state.id, ())
+        RESTORED.extend(s.id for s in remembered if _region_final(s))
+    return _ORIGINAL_HISTORY(self, info, state, *args)
+
+
 @contextmanager
 def simulated() -> Iterator[Clock]:
     """Runs python-statemachine on :data:`CLOCK` while the context lasts."""
     saved = (sync_engine.monotonic, event_data.monotonic, SyncEngine._take_due_external_event)
     sync_engine.monotonic = event_data.monotonic = lambda: CLOCK.now
     SyncEngine._take_due_external_event = _take_due_external_event
+    BaseEngine._add_history_states_to_enter = _add_history_states_to_enter
     CLOCK.now = 0.0
     try:
         yield CLOCK
     finally:
         sync_engine.monotonic, event_data.monotonic, SyncEngine._take_due_external_event = saved
+        BaseEngine._add_history_states_to_enter = _ORIGINAL_HISTORY
 
 
 @dataclass
@@ -98,6 +122,14 @@ class Machine:
         """The delayed events waiting, with their deadlines."""
         return sorted((t.execution_time, str(t.event)) for t in self._pending())
 
+    def restored_finals(self) -> set[str]:
+        """Paths of the final states of regions that deep history entered again since the
+        last call: python-statemachine enters them, LightRocks enters those regions at their
+        initial state (docs/language.md, the SCXML differences)."""
+        found = {"/".join(self.document.paths.get(i, (i,))) for i in RESTORED}
+        RESTORED.clear()
+        return found
+
     def observation(self) -> Observation:
         if self.sm.is_terminated:
             return (), None
@@ -119,12 +151,15 @@ STEP_PREFIX = "+"
 def run_both(cls: type, document: Document, variables: Sequence[str], events: Sequence[str]):
     """Both runs on ``events`` (an item ``+0.25`` advances the clocks): the observations
     after the start and after each item, LightRocks' chart, and python-statemachine's
-    machine."""
+    machine (whose ``restored`` lists :meth:`Machine.restored_finals` of the start and of
+    each item)."""
     chart = cls().start()
     mine = [lightrocks_observation(chart, variables)]
     with simulated():
+        RESTORED.clear()
         machine = Machine(document, variables)
         theirs = [machine.observation()]
+        machine.restored = [machine.restored_finals()]
         for event in events:
             if event.startswith(STEP_PREFIX):
                 seconds = float(event[1:])
@@ -135,9 +170,22 @@ def run_both(cls: type, document: Document, variables: Sequence[str], events: Se
                 machine.send(event)
             mine.append(lightrocks_observation(chart, variables))
             theirs.append(machine.observation())
+            machine.restored.append(machine.restored_finals())
     return mine, theirs, chart, machine
 
 
 def same(mine: Observation, theirs: Observation) -> bool:
     """Equal configurations, and equal values while the LightRocks run goes on."""
     return mine[0] == theirs[0] and (mine[1] is None or mine[1] == theirs[1])
+
+
+DEEP_HISTORY_OVER_A_FINAL = "deep history over a region resting in a final state"
+
+
+def documented(step: int, mine: Sequence[Observation], theirs: Sequence[Observation], machine):
+    """The documented difference that explains the first disagreement, at ``step``, or None:
+    python-statemachine entered a region's final state that a deep history remembered,
+    where LightRocks entered the region at its initial state."""
+    restored = machine.restored[step]
+    entered = set(theirs[step][0]) - set(mine[step][0])
+    return DEEP_HISTORY_OVER_A_FINAL if restored & entered else None
