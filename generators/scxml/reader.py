@@ -518,7 +518,10 @@ class Reader:
         for transition in element.all("transition"):
             helper = transition.lr("helper")
             if helper == "invariant":
-                scope.body.append(self._invariant(transition))
+                try:
+                    scope.body.append(self._invariant(transition))
+                except Refused as problem:
+                    self.refuse(problem.element, problem.message, problem.code)
             elif helper:
                 continue
             elif chart_root and self._chart_ending(transition):
@@ -552,7 +555,10 @@ class Reader:
         return budget
 
     def _region(self, scope: _Scope, element: Element) -> ast.Region:
-        name = self.name_of.get(element.get("id") or "") or self._name(scope.id, element)
+        if not element.get("id"):
+            self.refuse(element, "a region without id: LightRocks names every region")
+            return ast.Region("region", ())
+        name = self.name_of.get(element.get("id")) or self._name(scope.id, element)
         inner = _Scope(element.get("id"), element, parent=scope)
         children = _state_children(element)
         if not children:
@@ -742,11 +748,16 @@ class Reader:
         element = self.states.get(target)
         if element is not None and element.lr("helper") == "postcondition":
             checks = [t for t in element.all("transition") if not t.lr("helper")]
+            if not checks:
+                raise Refused(element, "a postcondition check without its transition")
             post = self._cond(checks[0])
             target = checks[0].get("target") or ""
             element = self.states.get(target)
         if element is not None and element.lr("helper") == "history-action":
-            target = element.all("transition")[0].get("target") or ""
+            onward = element.all("transition")
+            if not onward:
+                raise Refused(element, "a detour into a history without its transition")
+            target = onward[0].get("target") or ""
             element = self.states.get(target)
         if element is None or target not in self.name_of:
             raise Refused(transition, f"no state '{target}' to go to")
@@ -867,9 +878,7 @@ class Reader:
         if not text:
             return (None, finals) if completion else None
         tree = _parse(_normalized(text), transition)
-        parts = (
-            tree.values if isinstance(tree, py.BoolOp) and isinstance(tree.op, py.And) else [tree]
-        )
+        parts = self._parts(tree)
         kept = []
         for part in parts:
             ins = _in_states(part)
@@ -890,6 +899,26 @@ class Reader:
         else:
             guard = None
         return (guard, finals) if completion else guard
+
+    def _parts(self, tree: py.expr) -> list[py.expr]:
+        """The conjuncts of a condition, the generator's own ones (``In()``, history
+        variables, exclusions of other regions) taken out of the conjunctions it nests them
+        in; a guard of the model stays whole."""
+        if not (isinstance(tree, py.BoolOp) and isinstance(tree.op, py.And)):
+            return [tree]
+        found: list[py.expr] = []
+        for value in tree.values:
+            inner = self._parts(value)
+            if len(inner) > 1 and any(self._own(p) for p in inner):
+                found += inner
+            else:
+                found.append(value)
+        return found
+
+    def _own(self, part: py.expr) -> bool:
+        return _in_states(part) is not None or (
+            self.generated and (self._flag(part) or _suppressor(part))
+        )
 
     def _flag(self, part: py.expr) -> bool:
         inner = (
@@ -1105,7 +1134,11 @@ def convert_scxml_to_lr(path: Path, text: str, shown: str) -> Conversion:
         where = ast.Position(shown, problem.line, problem.column)
         finding = Diagnostic.at(where, OUTSIDE, Severity.ERROR, problem.message)
         return Conversion(f"{path.stem}.lr", None, [finding])
-    unit = reader.read(root, path.stem)
+    try:
+        unit = reader.read(root, path.stem)
+    except Refused as problem:  # one that no element above stopped
+        reader.refuse(problem.element, problem.message, problem.code)
+        unit = None
     name = f"{unit.statechart.name if unit else path.stem}.lr"
     if unit is None or any(f.severity is Severity.ERROR for f in reader.findings):
         return Conversion(name, None, reader.findings, unit)

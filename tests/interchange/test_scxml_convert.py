@@ -11,9 +11,11 @@ from __future__ import annotations
 import random
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from statecharts.random_charts import random_chart
 
 from interchange.canonical import canonical
 from interchange.conftest import generated
@@ -335,3 +337,34 @@ def test_convert_of_a_bad_document_writes_nothing_and_exits_1(tmp_path: Path) ->
     assert done.returncode == 1
     assert "Bad.scxml:6:3: error LR2130: <script>" in done.stdout
     assert sorted(p.name for p in tmp_path.iterdir()) == ["Bad.scxml", "Good.scxml"]
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_random_charts_come_back_as_they_were(seed: int) -> None:
+    unit = parse_statechart(random_chart(seed), "d/R.lr")
+    assert canonical(_back(_scxml(unit).text)) == canonical(unit)
+
+
+def test_a_damaged_document_gives_findings_never_an_exception() -> None:
+    """Elements and attributes of generated and hand-written documents removed or given
+    other values, at random: every conversion ends with a text or with findings."""
+    texts = [DOOR.read_text(encoding="utf-8")]
+    for file in SHARED[:6]:
+        texts.append(_scxml(parse_statechart(file.read_text(encoding="utf-8"), "A.lr")).text)
+    rng = random.Random(7)
+    values = ["", "x", "a b", "1", "done.state.x", "In('x')", "(", "n + ", "lr-error.x"]
+    for _ in range(400):
+        root = ET.fromstring(rng.choice(texts).split("\n", 1)[1])
+        elements = list(root.iter())
+        for _ in range(rng.randint(1, 3)):
+            element = rng.choice(elements)
+            parent = next((p for p in root.iter() if element in list(p)), None)
+            if rng.random() < 0.4 and parent is not None:
+                parent.remove(element)
+            elif element.attrib:
+                key = rng.choice(list(element.attrib))
+                ids = [e.get("id", "z") for e in elements]
+                element.attrib[key] = rng.choice([*values, rng.choice(ids)])
+        text = ET.tostring(root, encoding="unicode")
+        converted = convert_scxml_to_lr(Path("F.scxml"), text, "F.scxml")
+        assert converted.text is not None or converted.findings
