@@ -1099,13 +1099,18 @@ def _function(node: py.expr) -> tuple[str, list[py.expr]] | None:
 
 
 def _type_of(text: str | None) -> str | None:
+    """The type of a literal value (``-2`` Integer, ``0.5`` Real …), read from its syntax."""
     if text is None:
         return None
     try:
-        value = py.literal_eval(text.strip())
-    except (ValueError, SyntaxError):
+        node = py.parse(text.strip(), mode="eval").body
+    except SyntaxError:
         return None
-    return _TYPES.get(type(value))
+    if isinstance(node, py.UnaryOp) and isinstance(node.op, py.USub | py.UAdd):
+        node = node.operand
+        if isinstance(node, py.Constant) and isinstance(node.value, bool):
+            return None
+    return _TYPES.get(type(node.value)) if isinstance(node, py.Constant) else None
 
 
 def _delay(text: str) -> ast.Quantity | None:
