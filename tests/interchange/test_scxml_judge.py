@@ -133,6 +133,17 @@ def test_example_charts_run_alike_in_python_statemachine(name: str, examples, ta
     _judge(cls, document, list(document.variables), name, 30, 12, tally)
 
 
+OWN = Path(__file__).with_name("models")
+
+
+@pytest.mark.parametrize("name", ["Everything"])
+def test_the_chart_of_every_construct_runs_alike(name: str, tmp_path: Path, tally) -> None:
+    """tests/interchange/models/d/Everything.lr: what plant/ lacks (the chart's own actions,
+    time events and budget, reserved names, strings, abs/min/max, an error transition)."""
+    cls, document = generated(check([OWN]), OWN / "d" / f"{name}.lr", f"d.{name}", tmp_path)
+    _judge(cls, document, list(document.variables), name, 60, 14, tally)
+
+
 @pytest.mark.parametrize("name", sorted(SISMIC_CHARTS))
 def test_sismic_differential_charts_run_alike(name: str, pair, tally) -> None:
     cls, document = pair(name, SISMIC_CHARTS[name])
