@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from dataclasses import dataclass
 
 BASES = ("m", "kg", "s", "rad", "A")
@@ -112,6 +113,22 @@ def lookup(unit: str) -> UnitInfo:
     if len(infos) == 1:
         return infos[0]
     return UnitInfo(infos[0].factor / infos[1].factor, infos[0].dimension / infos[1].dimension)
+
+
+_DURATION = re.compile(r"\s*(\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)\s*([A-Za-z]+)\s*")
+
+
+def seconds(text: str | None) -> float | None:
+    """A duration written with a time unit (``<<timeout="5 s">>``, ``200 ms``) in seconds;
+    None for anything else. A number beyond a float is ``inf``: the caller decides."""
+    match = _DURATION.fullmatch(text or "")
+    if match is None:
+        return None
+    try:
+        info = lookup(match.group(2))
+    except UnitError:
+        return None
+    return float(match.group(1)) * info.factor if info.dimension == TIME else None
 
 
 def to_si(value: float, unit: str) -> float:

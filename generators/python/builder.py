@@ -15,7 +15,6 @@ from lightrocks.generators.python.names import DOMAIN, alias, identifier, module
 from lightrocks.generators.python.values import (
     python_type,
     safe_range,
-    seconds,
     stereotype_value,
     value_type,
 )
@@ -33,6 +32,7 @@ from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
 from lightrocks.languages.lightrocks.ranges import Flows
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import seconds
 from lightrocks.workbench.extensions import template_name
 from lightrocks.workbench.generators import GenerationError
 

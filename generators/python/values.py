@@ -3,8 +3,6 @@ run parameters, safe ranges, and durations of stereotypes."""
 
 from __future__ import annotations
 
-import re
-
 from lightrocks.generators.python.views import tuple_code
 from lightrocks.languages.domain.ranges import Range
 from lightrocks.languages.domain.types import (
@@ -18,7 +16,6 @@ from lightrocks.languages.domain.types import (
     VectorT,
 )
 from lightrocks.metamodel import ast
-from lightrocks.metamodel.units import UnitError, lookup
 
 
 def python_type(t: Type | None) -> str:
@@ -85,19 +82,6 @@ def safe_range(safe: Range) -> str | None:
         f"rt.Bound({lo!r}, {hi!r}, {unit!r}, {factor!r})" for lo, hi, unit, factor in bounds
     )
     return f"rt.SafeRange({safe.device!r}, {safe.command!r}, {safe.argument!r}, {shown})"
-
-
-def seconds(text: str | None) -> float | None:
-    """A ``<<timeout="5 s">>`` value in seconds."""
-    if not text:
-        return None
-    match = re.fullmatch(r"\s*(\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)\s*([A-Za-z]*)\s*", text)
-    if match is None:
-        return None
-    try:
-        return float(match.group(1)) * lookup(match.group(2)).factor
-    except UnitError:
-        return None
 
 
 def stereotype_value(stereotypes: tuple[ast.Stereotype, ...], name: str) -> str | None:

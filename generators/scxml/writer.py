@@ -38,10 +38,9 @@ import xml.etree.ElementTree as ET
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
-from lightrocks.generators.python.values import seconds as budget_seconds
 from lightrocks.generators.scxml.expressions import Translator, Untranslatable
 from lightrocks.generators.scxml.names import Names, event_name
-from lightrocks.metamodel import ast
+from lightrocks.metamodel import ast, units
 from lightrocks.metamodel.constants import fold
 from lightrocks.metamodel.printer import expression as lightrocks_text
 from lightrocks.metamodel.printer import stereotypes as stereotype_text
@@ -563,7 +562,7 @@ class Writer:
         return transition, float(value), comment
 
     def _budget(self) -> tuple[float | None, str]:
-        seconds = budget_seconds(self.budget.value)
+        seconds = units.seconds(self.budget.value)
         if seconds is None:
             self.refuse(self.budget.position, "a <<timeout>> that is not a duration")
             return None, ""

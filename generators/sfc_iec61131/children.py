@@ -16,7 +16,7 @@ from lightrocks.generators.sfc_iec61131.network import Branch
 from lightrocks.languages.domain.types import DeviceT, ObjectT, Type
 from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.metamodel import ast
-from lightrocks.metamodel.units import UnitError, lookup
+from lightrocks.metamodel.units import seconds
 from lightrocks.workbench.generators import GenerationError
 
 DEFAULT_TIMEOUT = 30.0
@@ -160,18 +160,15 @@ class Children:
         """The ``timeout`` stereotype of the action or of the one it extends, else its
         device's, else 30 s."""
         found = action.budget or ast.stereotype(device.stereotypes, "timeout")
-        return DEFAULT_TIMEOUT if found is None or not found.value else seconds(found)
+        return DEFAULT_TIMEOUT if found is None or not found.value else budget_seconds(found)
 
 
-def seconds(stereotype: ast.Stereotype) -> float:
-    """A ``<<timeout="…">>`` value in seconds."""
-    number, _, unit = (stereotype.value or "").strip().partition(" ")
-    try:
-        return float(number) * lookup(unit.strip() or "s").factor
-    except (ValueError, UnitError):
-        raise GenerationError(
-            f"{stereotype.position}: timeout '{stereotype.value}' is not a time"
-        ) from None
+def budget_seconds(stereotype: ast.Stereotype) -> float:
+    """A checked ``<<timeout="…">>`` in seconds (LR0501 has refused any other)."""
+    found = seconds(stereotype.value)
+    if found is None:
+        raise GenerationError(f"{stereotype.position}: timeout '{stereotype.value}' is not a time")
+    return found
 
 
 def _arguments(node: Node) -> dict[str, ast.Expression]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from lightrocks.generators.sfc_iec61131.children import seconds
+from lightrocks.generators.sfc_iec61131.children import budget_seconds
 from lightrocks.generators.sfc_iec61131.conditions import negate
 from lightrocks.generators.sfc_iec61131.expressions import literal, time_literal
 from lightrocks.generators.sfc_iec61131.hierarchy import Node
@@ -68,7 +68,7 @@ class TimeEvents:
                 Variable(instance, "TON", comment=comment),
                 Variable(passed, "BOOL", comment="the budget is spent"),
             ]
-            timer = Timer(None, instance, passed, time_literal(seconds(budget)))
+            timer = Timer(None, instance, passed, time_literal(budget_seconds(budget)))
             self.timers.setdefault(None, []).append(timer)
 
     def _budget_branches(

@@ -13,13 +13,12 @@ from lightrocks.languages.lightrocks.analysis import Analysis, analysis
 from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.languages.lightrocks.ranges import Flows
 from lightrocks.metamodel import ast
-from lightrocks.metamodel.units import TIME, UnitError, lookup
+from lightrocks.metamodel.units import seconds
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity
 
 Finding = tuple[ast.Position, str, str]
 
-DURATION = re.compile(r"\s*(\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)\s*([A-Za-z]+)\s*")
 SCENE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
@@ -47,18 +46,14 @@ def timeout_is_duration(context: object) -> Iterator[Finding]:
     for stereotype in _stereotypes(analysis(context)):
         if stereotype.name != "timeout":
             continue
-        match = DURATION.fullmatch(stereotype.value or "")
-        try:
-            unit = lookup(match.group(2)) if match is not None else None
-        except UnitError:
-            unit = None
-        if unit is None or unit.dimension != TIME:
+        duration = seconds(stereotype.value)
+        if duration is None:
             yield (
                 stereotype.position,
                 f"timeout '{stereotype.value}' is not a duration",
                 'write a number with a time unit, e.g. <<timeout="8 s">>',
             )
-        elif not math.isfinite(float(match.group(1)) * unit.factor):
+        elif not math.isfinite(duration):
             yield (
                 stereotype.position,
                 f"timeout '{stereotype.value}' is beyond the largest number a Real holds "

@@ -23,12 +23,11 @@ from lightrocks.languages.lightrocks.behaviour.conditions import Finding, start_
 from lightrocks.languages.lightrocks.behaviour.judge import Judge
 from lightrocks.languages.lightrocks.behaviour.scope import Scope
 from lightrocks.languages.lightrocks.behaviour.terms import Terms, exact
-from lightrocks.languages.lightrocks.cocos_safety import DURATION
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import fold
-from lightrocks.metamodel.units import ANGLE, FORCE, LENGTH, TIME, UnitError, lookup
+from lightrocks.metamodel.units import ANGLE, FORCE, LENGTH, TIME, UnitError, lookup, seconds
 
 TYPICAL_RATIO = 100.0
 MULTIPLES_OF_PI = {"π/4": math.pi / 4, "π/2": math.pi / 2, "π": math.pi, "2π": 2 * math.pi}
@@ -88,12 +87,12 @@ class Plausibility:
     def _budget(
         self, device: str, command: ast.Command, arguments: dict[str, ast.Expression]
     ) -> Iterator[Finding]:
-        stereotype = _timeout(self.component)
-        budget = _seconds(stereotype.value if stereotype else None)
+        stereotype = self.component.budget
+        budget = seconds(stereotype.value if stereotype else None)
         if budget is None:
             declared = Scope(self.typing, self.region).env.get(device)
             device_stereotype = ast.stereotype(declared.device.stereotypes, "timeout")
-            budget = _seconds(device_stereotype.value if device_stereotype else None)
+            budget = seconds(device_stereotype.value if device_stereotype else None)
         goal = _goal(command, arguments)
         if budget is None or goal is None:
             return
@@ -110,14 +109,14 @@ class Plausibility:
         turn = self._speed(command, arguments, ANGLE / TIME)
         if angle and turn:
             needed.append((angle / turn, f"{math.degrees(angle):g} deg at {turn:g} rad/s"))
-        for seconds, how in needed:
-            if seconds > budget:
+        for needs, how in needed:
+            if needs > budget:
                 where = stereotype.position if stereotype else self.component.statechart.position
                 yield Finding(
                     "LR0607",
                     where,
                     f"the time budget {budget:g} s is shorter than the motion takes: {how} "
-                    f"is {seconds:g} s",
+                    f"is {needs:g} s",
                     "raise the <<timeout>>, or move faster or less far",
                 )
 
@@ -320,26 +319,6 @@ def _dimension(unit: str) -> object:
         return lookup(unit).dimension if unit else None
     except UnitError:
         return None
-
-
-def _timeout(component: Component | None) -> ast.Stereotype | None:
-    while component is not None:
-        found = ast.stereotype(component.statechart.stereotypes, "timeout")
-        if found is not None:
-            return found
-        component = component.base
-    return None
-
-
-def _seconds(text: str | None) -> float | None:
-    match = DURATION.fullmatch(text or "")
-    if match is None:
-        return None
-    try:
-        info = lookup(match.group(2))
-    except UnitError:
-        return None
-    return float(match.group(1)) * info.factor if info.dimension == TIME else None
 
 
 def _file(component: Component) -> str:
