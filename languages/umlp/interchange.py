@@ -34,28 +34,14 @@ from lightrocks.languages.umlp.printer import expression as java_text
 from lightrocks.languages.umlp.printer import inline, print_sc, stereotype
 from lightrocks.languages.umlp.typing import JAVA_LANG_TYPES, type_of
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.convert import PRECEDENCE
 from lightrocks.metamodel.printer import expression as printed
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
 LAYERS = ("task", "skill", "action")
 COMPONENT_STEREOTYPES = ("import", "extends")
 LR_NUMBER = re.compile(r"(\d+(\.\d+)?|\.\d+)([eE][-+]?\d+)?")
-_OPERATORS = ("||", "&&", "==", "!=", "<", "<=", ">", ">=", "+", "-", "*", "/", "%")
-_PRECEDENCE = {
-    "||": 1,
-    "&&": 2,
-    "==": 3,
-    "!=": 3,
-    "<": 4,
-    "<=": 4,
-    ">": 4,
-    ">=": 4,
-    "+": 5,
-    "-": 5,
-    "*": 6,
-    "/": 6,
-    "%": 6,
-}
+_OPERATORS = tuple(PRECEDENCE)  # the binary operators both languages write alike
 _ATOM = 9
 _COMPOUND = {"+=": "+", "-=": "-", "*=": "*", "/=": "/", "%=": "%"}
 _DEFAULTS = {"Integer": "0", "Real": "0.0", "Boolean": "false", "String": '""'}
@@ -633,7 +619,7 @@ def sc_to_lr(unit: n.SCArtifact, name: str) -> tuple[ast.StatechartUnit, list[Di
 
 def _precedence(node: ast.Expression) -> int:
     if isinstance(node, ast.Binary):
-        return _PRECEDENCE[node.operator]
+        return PRECEDENCE[node.operator]
     return _ATOM - 1 if isinstance(node, ast.Unary) else _ATOM
 
 
@@ -687,7 +673,7 @@ def java_expression(node: ast.Expression) -> n.JExpression:
         case ast.Unary(operator=operator, operand=operand):
             return n.JPrefix(operator, _bracketed(operand, _precedence(operand) < _ATOM), where)
         case ast.Binary(operator=operator, left=left, right=right):
-            level = _PRECEDENCE[operator]
+            level = PRECEDENCE[operator]
             return n.JBinary(
                 operator,
                 _bracketed(left, _precedence(left) < level),
