@@ -9,17 +9,15 @@ Its screenshot is docs/studio.md's (set $STUDIO_ARTIFACTS to keep it).
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
 from lightrocks.languages.lightrocks.syntax import parse_statechart
-from studio.test_studio_page import Studio
+from studio.test_studio_page import Studio, launched
 
 pytest.importorskip("starlette", reason="the studio needs the 'monitor' extra")
 pytest.importorskip("selenium", reason="the browser tests need selenium (the 'dev' extra)")
@@ -35,20 +33,7 @@ def bare(tmp_path: Path, tmp_path_factory):
     """``lightrocks studio`` on a copy of the examples without the top-hat rail task."""
     models = shutil.copytree(ROOT / "examples", tmp_path / "examples")
     models.joinpath("din_rail", "tasks", "AssembleRail.lr").unlink()
-    err = tmp_path / "stderr.txt"
-    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "cache")}
-    command = [sys.executable, "-m", "lightrocks.app.cli", "studio", str(models)]
-    with err.open("w") as stderr:
-        process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=stderr)
-    url = ""
-    while not url and process.poll() is None:
-        time.sleep(0.1)
-        lines = err.read_text().splitlines()
-        url = next((s.removeprefix("studio: ") for s in lines if s.startswith("studio: ")), "")
-    assert url, f"the studio printed no URL: {err.read_text()}"
-    yield url, models
-    process.kill()
-    process.wait()
+    yield from launched(models, tmp_path, tmp_path_factory.getbasetemp() / "cache")
 
 
 def lightrocks(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:

@@ -34,8 +34,13 @@ AHEAD = "din_rail_ahead.tasks.AssembleRailAhead"
 def studio(tmp_path: Path, tmp_path_factory):
     """``lightrocks studio`` on a copy of the examples: (url, the copy's folder)."""
     models = shutil.copytree(ROOT / "examples", tmp_path / "examples")
+    yield from launched(models, tmp_path, tmp_path_factory.getbasetemp() / "cache")
+
+
+def launched(models: Path, tmp_path: Path, cache: Path):
+    """``lightrocks studio`` on ``models`` until the generator is closed: (url, models)."""
     err = tmp_path / "stderr.txt"
-    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "cache")}
+    env = {**os.environ, "XDG_CACHE_HOME": str(cache)}
     command = [sys.executable, "-m", "lightrocks.app.cli", "studio", str(models)]
     with err.open("w") as stderr:
         process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=stderr)
