@@ -369,10 +369,7 @@ class Executor(CommandRunner):
         self._write("transition", state=owner.path, source=t.source, target=t.target,
                     stimulus=t.stimulus)  # fmt: skip
         if t.action is not None:
-            try:
-                t.action(owner, s)
-            except Exception as exc:  # reported where the transition is written
-                raise _located(exc, t.location) from None
+            _located_call(t.action, owner, s, t.location)
         if t.post is not None and not _located_call(t.post, owner, s, t.location):
             return self._error(owner, "postcondition violated", t.location)
         if t.target in owner.end_names:  # ended like in a final state: nothing to remember
@@ -571,23 +568,15 @@ class Executor(CommandRunner):
 def _guard_holds(transition: Transition, owner: State, s: Snapshot) -> bool:
     """The transition's guard holds (or it has none); a fault of the guard is reported
     where the transition is written."""
-    if transition.guard is None:
-        return True
-    try:
-        return bool(transition.guard(owner, s))
-    except Exception as exc:
-        raise _located(exc, transition.location) from None
+    guard = transition.guard
+    return guard is None or bool(_located_call(guard, owner, s, transition.location))
 
 
 def _condition_holds(condition: Condition, owner: State, s: Snapshot) -> bool:
     """A start or end condition holds (or is a pure entry or exit point); a fault of its
     expression is reported where the condition is written."""
-    if condition.holds is None:
-        return True
-    try:
-        return bool(condition.holds(owner, s))
-    except Exception as exc:
-        raise _located(exc, condition.location) from None
+    holds = condition.holds
+    return holds is None or bool(_located_call(holds, owner, s, condition.location))
 
 
 def _located_call(code: Any, owner: State, s: Snapshot, location: str) -> Any:
