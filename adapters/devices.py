@@ -20,14 +20,10 @@ from lightrocks.adapters import kernels
 from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.control import CartesianImpedance, JointImpedance
 from lightrocks.adapters.kernels import DT, S_PEAK, S_R0, S_TURNED, S_YAW
-from lightrocks.adapters.robot_model import (
-    ARM_DOF,
-    FT_SITE,
-    HAND_BODY,
-    READY_Q,
-    ROBOT_ROOT,
-)
+from lightrocks.adapters.robot import Robot
+from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE
 from lightrocks.adapters.scene_registry import objects
+from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.sensing import WristSensor
 from lightrocks.adapters.video import VideoRecorder
 from lightrocks.runtime.contract import (
@@ -41,10 +37,8 @@ from lightrocks.runtime.contract import (
     Wrench,
 )
 
-DEFAULT_STIFFNESS = (2000.0, 2000.0, 2000.0, 200.0, 200.0, 200.0)
 DEFAULT_DAMPING = (0.7,) * 6
-DEFAULT_JOINT_STIFFNESS = (400.0, 400.0, 300.0, 300.0, 100.0, 100.0, 50.0)
-DEFAULT_JOINT_DAMPING = (0.7,) * 7
+DEFAULT_JOINT_DAMPING = (0.7,) * ARM_DOF
 SETTLE_TIME = 0.3
 """Seconds the robot holds the ready pose at start-up before the wrist sensor is tared."""
 GRIPPER_SETTLE = 0.02
@@ -134,32 +128,40 @@ def _optional_name(name: str) -> Callable[[Any], str | None]:
 
 _REQUIRED = object()
 
-_SIGNATURES: dict[tuple[str, str], dict[str, tuple[Any, Callable[[Any], Any]]]] = {
-    ("robot", "moveCartesian"): {
-        "goal": (_REQUIRED, _frame("goal")),
-        "task": (None, _frame("task")),
-        "stiffness": (DEFAULT_STIFFNESS, _vector("stiffness", 6, positive=True)),
-        "damping": (DEFAULT_DAMPING, _vector("damping", 6, positive=True)),
-        "speed": (0.1, _positive("speed")),
-        "angular_speed": (1.0, _positive("angular_speed")),
-        "ref": (None, _optional_name("ref")),
-    },
-    ("robot", "moveJoint"): {
-        "q": (_REQUIRED, _vector("q", ARM_DOF)),
-        "stiffness": (DEFAULT_JOINT_STIFFNESS, _vector("stiffness", ARM_DOF, positive=True)),
-        "damping": (DEFAULT_JOINT_DAMPING, _vector("damping", ARM_DOF, positive=True)),
-    },
-    ("gripper", "open"): {},
-    ("gripper", "close"): {"force": (20.0, _positive("force"))},
-    ("camera", "localize"): {"target": (_REQUIRED, _optional_name("target"))},
-}
+Signatures = dict[tuple[str, str], dict[str, tuple[Any, Callable[[Any], Any]]]]
 
 
-def _bind(device: str, command: str, args: Mapping[str, Any]) -> dict[str, Any]:
+def _signatures(robot: Robot) -> Signatures:
+    """The commands' parameters with their defaults (the stiffnesses are the robot's) and
+    converters."""
+    return {
+        ("robot", "moveCartesian"): {
+            "goal": (_REQUIRED, _frame("goal")),
+            "task": (None, _frame("task")),
+            "stiffness": (robot.cartesian_stiffness, _vector("stiffness", 6, positive=True)),
+            "damping": (DEFAULT_DAMPING, _vector("damping", 6, positive=True)),
+            "speed": (0.1, _positive("speed")),
+            "angular_speed": (1.0, _positive("angular_speed")),
+            "ref": (None, _optional_name("ref")),
+        },
+        ("robot", "moveJoint"): {
+            "q": (_REQUIRED, _vector("q", ARM_DOF)),
+            "stiffness": (robot.joint_stiffness, _vector("stiffness", ARM_DOF, positive=True)),
+            "damping": (DEFAULT_JOINT_DAMPING, _vector("damping", ARM_DOF, positive=True)),
+        },
+        ("gripper", "open"): {},
+        ("gripper", "close"): {"force": (20.0, _positive("force"))},
+        ("camera", "localize"): {"target": (_REQUIRED, _optional_name("target"))},
+    }
+
+
+def _bind(
+    signatures: Signatures, device: str, command: str, args: Mapping[str, Any]
+) -> dict[str, Any]:
     """Check and convert command arguments against the signature; defaults fill the rest."""
-    signature = _SIGNATURES.get((device, command))
+    signature = signatures.get((device, command))
     if signature is None:
-        commands = sorted(c for d, c in _SIGNATURES if d == device)
+        commands = sorted(c for d, c in signatures if d == device)
         if not commands:
             raise AdapterError(f"unknown device {device!r}; devices: robot, gripper, camera")
         raise AdapterError(f"device {device!r} has no command {command!r}; commands: {commands}")
@@ -281,21 +283,25 @@ _SENSORS = {
 
 
 class SimulatedCell:
-    """``runtime.contract.Adapter`` for one cell (LWR, parallel gripper, camera) on a plant."""
+    """``runtime.contract.Adapter`` for one cell (a robot arm, parallel gripper, camera) on a
+    plant; the scene and the robot are registered names (adapters.scene_registry)."""
 
-    PLANT: Callable[[str], Plant]
-    """Builds the physics of a scene; each adapter names its own."""
+    PLANT: Callable[[str, str], Plant]
+    """Builds the physics of a scene with a robot; each adapter names its own."""
 
     def __init__(
         self,
         scene: str = "empty",
         *,
+        robot: str = "lwr",
         seed: int = 0,
         perception_noise: tuple[float, float] = (0.0, 0.0),
         video: str | None = None,
     ) -> None:
         kernels.warm_up()
-        self.plant = type(self).PLANT(scene)
+        self.robot = registered_robot(robot)
+        self._signatures = _signatures(self.robot)
+        self.plant = type(self).PLANT(scene, robot)
         self.scene = scene
         self.noise = (float(perception_noise[0]), float(perception_noise[1]))
         self.rng = np.random.default_rng(seed)
@@ -315,7 +321,10 @@ class SimulatedCell:
         self._live = LiveSnapshot(self)
         self._sense()
         self.controller: CartesianImpedance | JointImpedance = JointImpedance(
-            self.arm, READY_Q, np.array(DEFAULT_JOINT_STIFFNESS), np.array(DEFAULT_JOINT_DAMPING)
+            self.arm,
+            np.array(self.robot.ready),
+            np.array(self.robot.joint_stiffness),
+            np.array(DEFAULT_JOINT_DAMPING),
         )
         self._start_command()
         for _ in range(round(SETTLE_TIME / DT)):
@@ -326,7 +335,7 @@ class SimulatedCell:
     # -- the Adapter protocol ---------------------------------------------------------------
 
     def devices(self) -> Mapping[str, str]:
-        return {"robot": "LWR", "gripper": "ParallelGripper", "camera": "Camera"}
+        return {"robot": self.robot.device, "gripper": "ParallelGripper", "camera": "Camera"}
 
     def snapshot(self) -> SimpleNamespace:
         """A frozen copy of every sensor value now."""
@@ -350,7 +359,7 @@ class SimulatedCell:
             if not (isinstance(budget, int | float) and budget >= 0 and math.isfinite(budget)):
                 message = f"budget must be a finite number of seconds >= 0, got {budget!r}"
                 raise AdapterError(message)
-        bound = [_bind(c.device, c.command, c.args) for c in commands]
+        bound = [_bind(self._signatures, c.device, c.command, c.args) for c in commands]
         started = [
             getattr(self, f"_{c.device}_{c.command}")(**b)
             for c, b in zip(commands, bound, strict=True)
@@ -435,7 +444,7 @@ class SimulatedCell:
 
     def objects(self) -> list[str]:
         """The scene's bodies a cell may name as objects (binding checks them)."""
-        return objects(self.plant.model, ROBOT_ROOT)
+        return objects(self.plant.model, self.robot.root)
 
     def measurements(self) -> dict[str, Any]:
         """Scene ground truth (e.g. screw depth) from the scene's hook, if it has one."""
@@ -510,7 +519,7 @@ class SimulatedCell:
         """Load model of the hand subtree (mass, centre of mass in the ft frame) from MuJoCo."""
         model, data = self.plant.model, self.plant.data
         self.plant.sync()
-        hand = model.body(HAND_BODY).id
+        hand = model.body(self.robot.hand).id
         site = model.site(FT_SITE).id
         rotation = data.site_xmat[site].reshape(3, 3)
         com = rotation.T @ (data.subtree_com[hand] - data.site_xpos[site])

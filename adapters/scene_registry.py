@@ -1,24 +1,29 @@
-"""Scenes and robot models by name, from the ``lightrocks.scenes`` and ``lightrocks.robots``
-entry points, so that a separate package adds a scene without touching this one.
+"""Scenes and robots by name, from the ``lightrocks.scenes`` and ``lightrocks.robots`` entry
+points, so that a separate package adds a scene or a robot without touching this one.
 
-A scene is an ``adapters.scene.Scene`` object. Its MJCF includes the robot by file name
-(``<include file="lwr.xml"/>``): every registered robot model is offered under its entry-point
-name, so the scene file may live in any package.
+A scene is an ``adapters.scene.Scene`` object, a robot an ``adapters.robot.Robot``. A scene's
+MJCF includes the robot of the run by file name, ``<include file="robot.xml"/>``; that robot
+is offered under its own name too (``lwr.xml``), for scenes written before robots could be
+chosen, which then run with that robot only.
 """
 
 from __future__ import annotations
 
 from functools import cache
 from importlib.metadata import entry_points
-from pathlib import Path
 
 import mujoco
 
+from lightrocks.adapters.robot import Robot
 from lightrocks.adapters.scene import Scene
 
 
 class UnknownScene(ValueError):
     """No registered scene has this name."""
+
+
+class UnknownRobot(ValueError):
+    """No registered robot has this name."""
 
 
 @cache
@@ -27,7 +32,9 @@ def scenes() -> dict[str, Scene]:
 
 
 @cache
-def robot_files() -> dict[str, Path]:
+def robots() -> dict[str, Robot]:
+    """Every registered robot; loading one reads no model files (that happens when a scene
+    with it is loaded), so listing them needs no robot's data installed."""
     return {e.name: e.load() for e in entry_points(group="lightrocks.robots")}
 
 
@@ -38,10 +45,25 @@ def scene(name: str) -> Scene:
     return found
 
 
-def load_model(name: str) -> mujoco.MjModel:
-    """The MuJoCo model of a scene, its robot include resolved from the robot registry."""
-    robots = {f"{robot}.xml": path.read_bytes() for robot, path in robot_files().items()}
-    return mujoco.MjModel.from_xml_path(str(scene(name).mjcf), robots)
+def robot(name: str) -> Robot:
+    found = robots().get(name) if isinstance(name, str) else None
+    if found is None:
+        raise UnknownRobot(f"unknown robot {name!r}; known robots: {', '.join(sorted(robots()))}")
+    return found
+
+
+def load_model(name: str, robot_name: str = "lwr") -> mujoco.MjModel:
+    """The MuJoCo model of a scene with the named robot as its ``robot.xml``."""
+    chosen = robot(robot_name)
+    mjcf = chosen.mjcf()
+    assets = {"robot.xml": mjcf, f"{robot_name}.xml": mjcf}
+    model = mujoco.MjModel.from_xml_path(str(scene(name).mjcf), assets)
+    if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, chosen.arm_joints[0]) < 0:
+        raise ValueError(
+            f"scene {name!r} does not include the robot {robot_name!r}: "
+            'its MJCF must include <include file="robot.xml"/>'
+        )
+    return model
 
 
 def objects(model: mujoco.MjModel, robot_body: str) -> list[str]:

@@ -19,15 +19,15 @@ from lightrocks.adapters.mujoco.arm import MujocoArm
 from lightrocks.adapters.mujoco.data_view import data_view, function_address
 from lightrocks.adapters.robot_model import (
     ARM_DOF,
-    ARM_JOINTS,
-    FINGER_JOINTS,
     FINGER_TRAVEL,
+    FORCE_SENSOR,
     FT_SITE,
     NV,
-    READY_Q,
     TCP_SITE,
+    TORQUE_SENSOR,
 )
 from lightrocks.adapters.scene_registry import load_model
+from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.scene_registry import scene as registered
 
 _ARRAYS = ("qpos", "qvel", "site_xpos", "site_xmat", "qfrc_bias", "ctrl", "sensordata")
@@ -35,31 +35,33 @@ _ARRAYS = ("qpos", "qvel", "site_xpos", "site_xmat", "qfrc_bias", "ctrl", "senso
 
 
 class MujocoPlant:
-    """A scene simulated by MuJoCo with the timestep forced to the control period."""
+    """A scene with a robot (both by registered name) simulated by MuJoCo with the timestep
+    forced to the control period."""
 
-    def __init__(self, scene: str) -> None:
-        self.model = load_model(scene)
+    def __init__(self, scene: str, robot: str = "lwr") -> None:
+        self._robot = registered_robot(robot)
+        self.model = load_model(scene, robot)
         self.model.opt.timestep = DT
         self.data = mujoco.MjData(self.model)
-        joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
+        joints = [self.model.joint(name) for name in self._robot.joints]
         self._qadr = np.array([j.qposadr[0] for j in joints])
         self._vadr = np.array([j.dofadr[0] for j in joints])
         if not (np.all(np.diff(self._qadr) == 1) and np.all(np.diff(self._vadr) == 1)):
             raise ValueError(f"robot joints of scene {scene!r} are not contiguous")
         qa, va = int(self._qadr[0]), int(self._vadr[0])
-        actuators = [self.model.actuator(name).id for name in (*ARM_JOINTS, *FINGER_JOINTS)]
+        actuators = [self.model.actuator(name).id for name in self._robot.joints]
         self._ctrl = int(actuators[0])
         if actuators != list(range(self._ctrl, self._ctrl + NV)):
             raise ValueError(f"robot actuators of scene {scene!r} are not contiguous")
         self.q = self.data.qpos[qa : qa + NV]
         self.v = self.data.qvel[va : va + NV]
-        self.q[:ARM_DOF] = READY_Q
+        self.q[:ARM_DOF] = self._robot.ready
         self.q[ARM_DOF:] = FINGER_TRAVEL
         mujoco.mj_forward(self.model, self.data)
         sensor = self.model.sensor
-        self._force = int(sensor("ft_force").adr[0])
-        if int(sensor("ft_torque").adr[0]) != self._force + 3:
-            raise ValueError("sensor ft_torque must follow ft_force in lwr.xml")
+        self._force = int(sensor(FORCE_SENSOR).adr[0])
+        if int(sensor(TORQUE_SENSOR).adr[0]) != self._force + 3:
+            raise ValueError(f"sensor {TORQUE_SENSOR} must follow {FORCE_SENSOR} in the robot")
         tcp, ft = self.model.site(TCP_SITE).id, self.model.site(FT_SITE).id
         self._mj, at = data_view(self.data, _ARRAYS)
         """``data`` as one array (see data_view), with the offsets of ``index``."""

@@ -25,21 +25,10 @@ import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters.arm import PinocchioArm, address, carrier, in_joint
-from lightrocks.adapters.robot_model import (
-    ARM_DOF,
-    ARM_JOINTS,
-    FINGER_DAMPING,
-    FINGER_JOINTS,
-    FINGER_TRAVEL,
-    FT_SITE,
-    HAND_BODY,
-    NV,
-    READY_Q,
-    TCP_SITE,
-    load_robot,
-)
+from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL, FT_SITE, NV, TCP_SITE
 from lightrocks.adapters.scene import FixtureTwin
 from lightrocks.adapters.scene_registry import load_model
+from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.scene_registry import scene as registered
 from lightrocks.adapters.vec import cross
 
@@ -50,7 +39,6 @@ FRICTION = 1.0
 FRICTION_SLIP = 1e-3
 """Sliding speed [m/s] at which friction reaches the Coulomb limit (regularisation)."""
 GRAVITY = np.array([0.0, 0.0, -9.81])
-CONTACT_BODIES = (HAND_BODY, *FINGER_JOINTS)
 GRASP_WIDTH = 0.02
 """Width [m] at which the twin's fingers stop on a part of the scene's fixture twin."""
 REACH = 0.2
@@ -72,19 +60,21 @@ def box_corners(model: mujoco.MjModel, body_name: str) -> np.ndarray:
 
 
 class PinocchioPlant:
-    """A scene (read from the same MJCF) simulated with Pinocchio dynamics."""
+    """A scene with a robot (both by registered name; the scene read from the same MJCF)
+    simulated with Pinocchio dynamics."""
 
-    def __init__(self, scene: str) -> None:
+    def __init__(self, scene: str, robot: str = "lwr") -> None:
         self._scene = registered(scene)
-        self.model = load_model(scene)
+        self._robot = chosen = registered_robot(robot)
+        self.model = load_model(scene, robot)
         self.data = mujoco.MjData(self.model)
-        joints = [self.model.joint(name) for name in (*ARM_JOINTS, *FINGER_JOINTS)]
+        joints = [self.model.joint(name) for name in chosen.joints]
         self._qadr = np.array([j.qposadr[0] for j in joints])
-        self.robot = load_robot()
+        self.robot = chosen.model()
         self.arm = PinocchioArm(self.robot)
         self.q, self.v = self.arm.q, self.arm.v
         """The joint state is the arm state's, integrated in place."""
-        self.q[:ARM_DOF], self.q[ARM_DOF:] = READY_Q, FINGER_TRAVEL
+        self.q[:ARM_DOF], self.q[ARM_DOF:] = chosen.ready, FINGER_TRAVEL
         self.robot_data = self.arm.data
         """Pinocchio's data, shared with the arm state: its ``compute`` serves both."""
         self.arm.compute()
@@ -95,13 +85,13 @@ class PinocchioPlant:
         damping = [self.model.dof_damping[j.dofadr[0]] for j in joints]
         twin[k.T_DAMPING : k.T_DAMPING + NV] = -np.array(damping)
         self._generalized = twin[k.T_GENERALIZED : k.T_GENERALIZED + NV]
-        hand = self.model.body(HAND_BODY).id
+        hand = self.model.body(chosen.hand).id
         load_com = self._in_body(hand, self.data.subtree_com[hand])
         twin[k.T_LOAD : k.T_LOAD + 3] = float(self.model.body_subtreemass[hand]) * GRAVITY
         twin[k.T_LOAD_COM : k.T_LOAD_COM + 3] = load_com
-        hand_frame = self.robot.getFrameId(HAND_BODY, pin.BODY)
+        hand_frame = self.robot.getFrameId(chosen.hand, pin.BODY)
         if carrier(self.robot, (hand_frame,)) != self.arm.joint:
-            raise ValueError(f"the hand body {HAND_BODY!r} is not on the TCP's joint")
+            raise ValueError(f"the hand body {chosen.hand!r} is not on the TCP's joint")
         twin[k.T_HAND : k.T_HAND + 12] = in_joint(self.robot, hand_frame)
         twin[k.T_STIFFNESS], twin[k.T_CONTACT_DAMPING] = CONTACT_STIFFNESS, CONTACT_DAMPING
         twin[k.T_FRICTION], twin[k.T_SLIP] = FRICTION, FRICTION_SLIP
@@ -143,14 +133,15 @@ class PinocchioPlant:
         return boxes
 
     def _contact_bodies(self) -> tuple[np.ndarray, np.ndarray]:
-        """The ``links`` and ``bodies`` arrays of the contact bodies (adapters.kernels B_*):
+        """The ``links`` and ``bodies`` arrays of the contact bodies, the robot's hand and
+        fingers (adapters.kernels B_*):
         where Pinocchio keeps each body's joint placement, and the corners of its box geoms
         in its frame."""
-        robot = self.robot
-        links = np.zeros(k.B_INTS * len(CONTACT_BODIES), dtype=np.int64)
+        robot, bodies = self.robot, (self._robot.hand, *self._robot.fingers)
+        links = np.zeros(k.B_INTS * len(bodies), dtype=np.int64)
         headers, points = [], []
-        start = k.B_HEADER * len(CONTACT_BODIES)
-        for index, name in enumerate(CONTACT_BODIES):
+        start = k.B_HEADER * len(bodies)
+        for index, name in enumerate(bodies):
             frame = robot.getFrameId(name, pin.BODY)
             joint = robot.frames[frame].parentJoint
             moves = np.zeros(NV)
@@ -171,7 +162,7 @@ class PinocchioPlant:
         arm = self.arm
         if tau is not arm.tau:
             arm.tau[:] = tau
-        speed = grip / FINGER_DAMPING
+        speed = grip / self._robot.finger_damping
         alone = self._fixture is None
         near = k.twin_step(arm.buffer, self._twin, arm.index, arm.frames, speed, self._grasp, alone)
         if near >= 0:

@@ -78,6 +78,12 @@ def test_unknown_scene_is_a_value_error(kind):
         kind("atlantis")
 
 
+@pytest.mark.parametrize("kind", [MujocoAdapter, PinocchioAdapter])
+def test_unknown_robot_is_a_value_error_naming_the_known_ones(kind):
+    with pytest.raises(ValueError, match=r"unknown robot 'r2d2'; known robots: .*lwr"):
+        kind("empty", robot="r2d2")
+
+
 def test_timeout_leaves_the_robot_holding_still(adapter):
     tcp = adapter.snapshot().robot.tcp
     goal = pin.SE3(tcp.rotation, tcp.translation + np.array([0.0, 0.2, 0.0]))

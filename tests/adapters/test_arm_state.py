@@ -17,7 +17,8 @@ from lightrocks.adapters.kernels import SLOW_EVERY
 from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.mujoco.plant import MujocoPlant
 from lightrocks.adapters.pinocchio.plant import PinocchioPlant, box_corners
-from lightrocks.adapters.robot_model import ARM_DOF, FINGER_JOINTS, NV, load_robot
+from lightrocks.adapters.robot_model import ARM_DOF, NV
+from lightrocks.adapters.robots.lwr import ROBOT as LWR
 
 TOLERANCE = 1e-9
 FIELDS = ("q", "v", "position", "rotation", "ft_position", "ft_rotation", "jacobian", "twist")
@@ -25,7 +26,7 @@ FIELDS = ("q", "v", "position", "rotation", "ft_position", "ft_rotation", "jacob
 
 def _twin_of(plant: MujocoPlant) -> PinocchioArm:
     """A Pinocchio arm state that reads the MuJoCo plant's joint arrays (on ``compute``)."""
-    return PinocchioArm(load_robot(), plant.q, plant.v)
+    return PinocchioArm(LWR.model(), plant.q, plant.v)
 
 
 def _assert_same(mujoco_arm, pinocchio_arm) -> None:
@@ -113,8 +114,8 @@ def test_a_twin_step_follows_pinocchios_forward_dynamics_with_the_fingers_where_
     """The twin's arm accelerations are ABA's for the arm with the fingers locked at their
     current opening (no grip force: the fingers rest), whatever the opening."""
     plant = PinocchioPlant("empty")
-    robot, rng = load_robot(), np.random.default_rng(3)
-    fingers = [robot.getJointId(name) for name in FINGER_JOINTS]
+    robot, rng = LWR.model(), np.random.default_rng(3)
+    fingers = [robot.getJointId(name) for name in LWR.finger_joints]
     damping = -plant._twin[k.T_DAMPING : k.T_DAMPING + ARM_DOF]
     for opening in (0.0, 0.015, 0.04):
         plant.q[:ARM_DOF] = rng.uniform(-1.5, 1.5, ARM_DOF)
@@ -133,7 +134,7 @@ def test_a_twin_step_follows_pinocchios_forward_dynamics_with_the_fingers_where_
 
 
 def test_the_native_reads_need_the_frames_on_one_joint_that_the_arm_joints_move() -> None:
-    robot = load_robot()
+    robot = LWR.model()
 
     def body(name: str) -> int:
         return robot.getFrameId(name, pin.BODY)
@@ -173,7 +174,7 @@ def test_the_twins_native_contacts_equal_the_penalty_law_computed_with_numpy() -
 
     generalized, wrench, touching = np.zeros(NV), np.zeros(6), []
     ft = data.oMf[robot.getFrameId("ft")].translation
-    for name in ("hand", *FINGER_JOINTS):
+    for name in (LWR.hand, *LWR.fingers):
         frame = robot.getFrameId(name, pin.BODY)
         placement = data.oMf[frame]
         jacobian = pin.getFrameJacobian(robot, data, frame, pin.LOCAL_WORLD_ALIGNED)

@@ -1,0 +1,1 @@
+"""The robots LightRocks ships, one module each, registered by ``lightrocks.robots``."""
