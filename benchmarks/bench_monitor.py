@@ -4,8 +4,9 @@ serving a connected page against the same run without a monitor.
 Run: ``.venv/bin/python benchmarks/bench_monitor.py [repeats] [task.lr]`` (default 2 repeats
 of the DIN-rail task). The runs alternate between the two settings so that the load of the
 machine falls on both alike. The page is a websocket client in its own process that reads
-every push, as a browser does. The goal: the watched run keeps at least 90 % of the
-unwatched speed, since the run's thread only appends to the feed and never waits for a page.
+every push, as a browser does (the token in a bearer header, as tools send it). The goal:
+the watched run keeps at least 90 % of the unwatched speed, since the run's thread only
+appends to the feed and never waits for a page.
 On a machine shared with other work the wall-clock figures spread widely; the CPU seconds
 of this process (run and server threads) are the steadier measure of the monitor's cost.
 """
@@ -29,7 +30,8 @@ CLIENT = """
 import json, sys
 from websockets.sync.client import connect
 pushes = records = size = 0
-with connect(sys.argv[1]) as socket:
+url, token = sys.argv[1].split("?token=")
+with connect(url, additional_headers={"Authorization": f"Bearer {token}"}) as socket:
     print("connected", flush=True)
     for message in socket:
         data = json.loads(message)
