@@ -1,5 +1,9 @@
 """The domain module ``_domain.py``: device types as ``typing.Protocol`` classes and cells
-as ``runtime.Cell`` classes."""
+as ``runtime.Cell`` classes.
+
+The device library (``lightrocks.robots``, on every model path) is a catalogue: of its device
+types only those a cell uses are emitted, so that a type added to it changes no generated
+module of a model that does not use it. A model's own device types are always emitted."""
 
 from __future__ import annotations
 
@@ -11,19 +15,35 @@ from lightrocks.generators.python.names import identifier
 from lightrocks.generators.python.values import python_type, stereotype_value, zero_value
 from lightrocks.generators.python.views import docstring_text
 from lightrocks.metamodel import ast
+from lightrocks.workbench.modelpath import LIBRARY
+from lightrocks.workbench.workspace import Symbol
 
 
 def domain_module(builder: Builder, environment) -> str | None:
     workspace = builder.workspace
+    symbols = sorted(workspace.symbols.values(), key=lambda s: s.qualified_name)
+    used = _used_devices(builder, [s for s in symbols if isinstance(s.node, ast.Cell)])
     devices, cells = [], []
-    for symbol in sorted(workspace.symbols.values(), key=lambda s: s.qualified_name):
+    for symbol in symbols:
         if isinstance(symbol.node, ast.Device):
-            devices.append(_device_view(builder, symbol))
+            if symbol.qualified_name in used or not symbol.loaded.path.is_relative_to(LIBRARY):
+                devices.append(_device_view(builder, symbol))
         elif isinstance(symbol.node, ast.Cell):
             cells.append(_cell_view(builder, symbol))
     if not devices and not cells:
         return None
     return environment.get_template("domain.py.jinja").render(devices=devices, cells=cells)
+
+
+def _used_devices(builder: Builder, cells: list[Symbol]) -> set[str]:
+    """The qualified names of the device types the cells' devices have."""
+    found = set()
+    for cell in cells:
+        for device in cell.node.devices:
+            symbol = builder.workspace.resolve(cell.loaded, device.type)
+            if symbol is not None:
+                found.add(symbol.qualified_name)
+    return found
 
 
 def _device_view(builder: Builder, symbol) -> dict:

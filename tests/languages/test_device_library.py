@@ -1,0 +1,83 @@
+"""The device library's robots: the Panda offers the LWR's interface (so that a run puts it
+in a cell's LWR slot) with ranges and defaults of its own; what two device types differ in
+is named."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from lightrocks.languages.domain.interface import Interface, differences, interface
+from lightrocks.languages.domain.ranges import command_ranges
+from lightrocks.languages.domain.types import Types
+from lightrocks.metamodel.constants import fold
+from lightrocks.workbench.check import CheckContext, check
+from lightrocks.workbench.modelpath import LIBRARY
+
+ROBOTS = LIBRARY / "lightrocks" / "robots"
+
+
+def interfaces(context: CheckContext, *names: str) -> list[Interface]:
+    workspace = context.workspace
+    types = Types(workspace)
+    found = [workspace.lookup(name) for name in names]
+    return [interface(types, symbol.loaded, symbol.node) for symbol in found]
+
+
+def test_the_panda_offers_the_interface_of_the_lwr() -> None:
+    context = check([ROBOTS])
+    assert context.diagnostics.items == []
+    lwr, panda = interfaces(context, "lightrocks.robots.LWR", "lightrocks.robots.Panda")
+    assert differences(lwr, panda) == []
+    assert lwr.commands == panda.commands
+    assert lwr.sensors == panda.sensors
+    assert list(lwr.commands) == ["moveCartesian", "moveJoint"]
+
+
+def test_the_panda_has_ranges_and_defaults_of_its_own() -> None:
+    context = check([ROBOTS])
+    panda = context.workspace.lookup("lightrocks.robots.Panda").node
+    lwr = context.workspace.lookup("lightrocks.robots.LWR").node
+    stiffness = command_ranges("robot", panda.commands[0])["stiffness"].safe_range()
+    assert [b.high for b in stiffness.bounds] == [3000.0] * 3 + [300.0] * 3
+    assert stiffness.breach([4000.0, 1.0, 1.0, 1.0, 1.0, 1.0]) is not None
+    lwr_stiffness = command_ranges("robot", lwr.commands[0])["stiffness"].safe_range()
+    assert lwr_stiffness.breach([4000.0, 1.0, 1.0, 1.0, 1.0, 1.0]) is None
+    joints = panda.commands[1]
+    assert fold(joints.parameters[1].default) == (600.0, 600.0, 600.0, 600.0, 250.0, 150.0, 50.0)
+    q = command_ranges("robot", joints)["q"].safe_range()
+    assert q.breach([0.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0]) is None
+    assert "q[3]" in q.breach([0.0, 0.0, 0.0, 0.0, 0.0, 1.5, 0.0])  # the elbow bends one way
+
+
+DEVICES = """package lab;
+
+device Arm {
+  command move(Frame goal, Velocity speed = 0.1 m/s);
+  command stop();
+  sensor Boolean done;
+  sensor Force load;
+}
+
+device Other {
+  command move(Frame target, Velocity speed);
+  command wave();
+  sensor Boolean done;
+  sensor Torque load;
+}
+"""
+
+
+def test_what_two_device_types_differ_in_is_named(tmp_path: Path) -> None:
+    (tmp_path / "lab").mkdir()
+    (tmp_path / "lab" / "Devices.lrd").write_text(DEVICES, encoding="utf-8")
+    context = check([tmp_path / "lab"], [tmp_path])
+    assert not context.diagnostics.has_errors
+    arm, other = interfaces(context, "lab.Arm", "lab.Other")
+    assert differences(arm, other) == [
+        "command 'move' is move(Frame goal, Velocity speed = …) in Arm, "
+        "move(Frame target, Velocity speed) in Other",
+        "Other has no command 'stop'",
+        "Other has a command 'wave' that Arm does not have",
+        "sensor 'load' is Force load in Arm, Torque load in Other",
+    ]
+    assert differences(arm, arm) == []
