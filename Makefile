@@ -11,7 +11,7 @@ INSTALL := PYTHONWARNINGS="ignore:Editable installation" $(BIN)/python -m pip in
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(INSTALL) -e '.[dev]'
+	$(INSTALL) -e '.[dev,panda]'
 	touch $(STAMP)
 
 demo: $(STAMP)

@@ -19,6 +19,11 @@ import pinocchio as pin
 from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL
 
 
+class RobotDataMissing(ValueError):
+    """A registered robot whose model files are not installed; the message says what to
+    install."""
+
+
 @dataclass(frozen=True)
 class Robot(ABC):
     """A robot arm with a parallel gripper, as both adapters need it.

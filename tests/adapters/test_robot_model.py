@@ -13,9 +13,9 @@ from lightrocks.adapters.scene_registry import UnknownRobot, robot, robots
 TOLERANCE = 1e-9
 
 
-@pytest.fixture(scope="module", params=["lwr"])
-def named(request) -> Robot:
-    return robot(request.param)
+@pytest.fixture(scope="module", params=["lwr", "panda"])
+def named(request, installed) -> Robot:
+    return installed(request.param)
 
 
 @pytest.fixture(scope="module")
