@@ -26,13 +26,16 @@ def adapter_options(
     noise: Noise = (0.0, 0.0),
     video: str | None = None,
     script: Script | None = None,
+    robot: str | None = None,
 ) -> dict[str, Any]:
     """Keyword arguments for the adapter, read off its signature so that nothing it cannot
-    honour (noise, a video) is silently dropped; the seed only matters to adapters that
-    draw random numbers."""
+    honour (noise, a video, another robot) is silently dropped; the seed only matters to
+    adapters that draw random numbers."""
     if name is None:
         if any(noise) or video is not None or script is not None:
             raise RunError("perception noise, video and script need an adapter (--adapter)")
+        if robot is not None:
+            raise RunError("--robot chooses the robot an adapter simulates: give --adapter")
         return {}
     accepted = inspect.signature(adapter_factory(name)).parameters
     options: dict[str, Any] = {"seed": seed} if "seed" in accepted else {}
@@ -48,7 +51,20 @@ def adapter_options(
         if not {"outcomes", "sensors"} <= set(accepted):
             raise RunError(f"adapter '{name}' cannot follow a script (the dry run can)")
         options.update(script)
+    if robot is not None:
+        if "robot" not in accepted:
+            able = ", ".join(_taking("robot")) or "none"
+            raise RunError(
+                f"adapter '{name}' has no choice of robot; --robot needs one that has: {able}"
+            )
+        options["robot"] = robot
     return options
+
+
+def _taking(option: str) -> list[str]:
+    """The registered adapters whose signature takes ``option``."""
+    names = sorted(e.name for e in entry_points(group="lightrocks.adapters"))
+    return [n for n in names if option in inspect.signature(adapter_factory(n)).parameters]
 
 
 def adapter_for(name: str, scene: str | None, **options: Any) -> Any:

@@ -3,7 +3,8 @@
 Generated packages live in the run cache (:mod:`app.cache`), so an unchanged model
 is generated once. Each entry is verified before it is imported with importlib, all its
 modules at once and without writing bytecode beside them; model text itself is never
-executed.
+executed. A run on another robot than its cell names checks and generates the model with
+the cell's robot slot re-bound (:mod:`app.rebinding`).
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from types import ModuleType
 from lightrocks.app import cache
 from lightrocks.app.cachedir import cache_root
 from lightrocks.app.errors import ModelError, RunError
+from lightrocks.app.rebinding import check_rebound, rebinding
+from lightrocks.app.robots import RobotChoice
 from lightrocks.generators.python import GENERATOR
 from lightrocks.metamodel import ast
 from lightrocks.workbench import report
@@ -25,16 +28,22 @@ from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.generators import GenerationRequest, run_generator
 
 
-def generator_inputs(context: CheckContext, files: list[Path]) -> list[tuple[str, bytes]]:
-    """Every loaded model (path and text) and the files generation was asked for."""
+def generator_inputs(
+    context: CheckContext, files: list[Path], rebound: str | None = None
+) -> list[tuple[str, bytes]]:
+    """Every loaded model (path and text), the files generation was asked for, and the
+    re-binding of the cell's robot slot the models were checked with."""
     units = sorted(context.workspace.loaded_units(), key=lambda u: str(u.path))
     inputs = [(str(unit.path), unit.path.read_bytes()) for unit in units]
-    return inputs + [(str(file), b"requested") for file in sorted(files)]
+    inputs += [(str(file), b"requested") for file in sorted(files)]
+    return inputs + ([("rebound", rebound.encode())] if rebound is not None else [])
 
 
-def generated_package(context: CheckContext, files: list[Path], root: Path) -> ModuleType:
+def generated_package(
+    context: CheckContext, files: list[Path], root: Path, rebound: str | None = None
+) -> ModuleType:
     """Generate (once per input) and import the package of every loaded statechart."""
-    key = cache.cache_key(GENERATOR.name, generator_inputs(context, files))
+    key = cache.cache_key(GENERATOR.name, generator_inputs(context, files, rebound))
     name = f"lightrocks_{key}"
     if name not in sys.modules:
         folder = cache.entry(
@@ -74,15 +83,23 @@ def component_class(package: ModuleType, qualified_name: str) -> type:
     return package.component(qualified_name)
 
 
-def load_component(model: Path, search_path: Sequence[Path]) -> type:
-    """Check the model, generate it (once per content) and import the class of its chart."""
+def load_component(
+    model: Path, search_path: Sequence[Path], robot: RobotChoice | None = None
+) -> type:
+    """Check the model, generate it (once per content) and import the class of its chart;
+    with ``robot``, with the robot in the cell's robot slot."""
     context = check([model], list(search_path))
+    rebound = rebinding(context, model, robot) if robot is not None else None
+    if rebound is not None:
+        context = check_rebound(model, search_path, rebound)
     if context.diagnostics.has_errors:
-        raise ModelError(report.text(context.diagnostics.items))
+        found = report.text(context.diagnostics.items)
+        raise ModelError(f"checked with {rebound.description}\n{found}" if rebound else found)
     units = [u.unit for u in context.workspace.loaded_units() if u.path == model.resolve()]
     if not units or not isinstance(units[0], ast.StatechartUnit):
         raise RunError(f"{model} holds no statechart")
     unit = units[0]
     name = f"{unit.package}.{unit.statechart.name}" if unit.package else unit.statechart.name
-    package = generated_package(context, [model.resolve()], cache_root())
+    described = rebound.description if rebound is not None else None
+    package = generated_package(context, [model.resolve()], cache_root(), described)
     return component_class(package, name)

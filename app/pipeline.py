@@ -14,6 +14,7 @@ from typing import Any
 from lightrocks.app.adapter_factory import adapter_for, scene_of
 from lightrocks.app.errors import ModelError
 from lightrocks.app.loading import load_component
+from lightrocks.app.robots import RobotChoice, choose
 from lightrocks.app.run import RunResult, drive, success_outcome, summarize
 from lightrocks.app.specs import GenerateSpec, RunSpec, run_spec
 from lightrocks.workbench import report
@@ -40,10 +41,10 @@ def generate(spec: GenerateSpec) -> dict[str, str | bytes]:
     return run_generator(generator, request)
 
 
-def load(model: Path, search_path: Sequence[Path]) -> type:
+def load(model: Path, search_path: Sequence[Path], robot: RobotChoice | None = None) -> type:
     """The generated class of the statechart in ``model`` (checked, generated once per
-    content, imported)."""
-    return load_component(model, search_path)
+    content, imported); with ``robot``, for that robot in the cell's robot slot."""
+    return load_component(model, search_path, robot)
 
 
 def run(
@@ -56,7 +57,7 @@ def run(
     """One run; ``cls`` is the loaded class of ``spec.model`` where the caller has it. The
     measurements are read before the adapter is closed, because closing ends its
     simulation."""
-    cls = cls or load(spec.model, spec.search_path)
+    cls = cls or load(spec.model, spec.search_path, spec.robot)
     wanted = success_outcome(cls, spec.success)
     scene = scene_of(cls)
     device = (
@@ -98,11 +99,16 @@ def spec_for(
     search_path: Sequence[Path],
     params: Sequence[str] = (),
     adapter: str | None = None,
+    *,
+    robot: str | None = None,
     **options: Any,
 ) -> RunSpec:
     """The spec of a run of ``model`` from its user's words (see :func:`specs.run_spec` for
-    the ``options``): for callers that have no loaded class yet."""
-    return run_spec(load(model, search_path), model, search_path, params, adapter, **options)
+    the ``options``; ``robot`` names a registered robot): for callers that have no loaded
+    class yet."""
+    chosen = choose(robot) if robot is not None else None
+    cls = load(model, search_path, chosen)
+    return run_spec(cls, model, search_path, params, adapter, robot=chosen, **options)
 
 
 def run_model(

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from lightrocks.app.adapter_factory import adapter_options
+from lightrocks.app.robots import RobotChoice
 from lightrocks.app.run import success_outcome
 from lightrocks.app.script import Script
 from lightrocks.app.values import Noise, parameters, parse_delay
@@ -76,6 +77,9 @@ class RunSpec:
     events: tuple[str | float, ...] = ()
     """Events to send once the chart rests, and clock advances in seconds."""
     success: str | None = None
+    robot: RobotChoice | None = None
+    """The robot in the cell's robot slot, where the user chose one (``--robot``); the
+    class of ``model`` is loaded for it, and the adapter simulates it."""
 
     def for_seed(self, seed: int) -> RunSpec:
         """The same run with another seed, tracing to ``run.seed3.jsonl`` where it traces."""
@@ -86,11 +90,15 @@ class RunSpec:
 
     @property
     def header(self) -> dict[str, Any]:
-        """The first record of a trace file: the model it ran, so that a replay can draw it."""
-        return {
+        """The first record of a trace file: the model it ran, so that a replay can draw it,
+        and the robot chosen for it."""
+        header: dict[str, Any] = {
             "model": str(self.model.resolve()),
             "path": [str(p.resolve()) for p in self.search_path],
         }
+        if self.robot is not None:
+            header["robot"] = self.robot.name
+        return header
 
 
 def run_spec(
@@ -107,22 +115,25 @@ def run_spec(
     trace: Path | None = None,
     events: Sequence[str] = (),
     success: str | None = None,
+    robot: RobotChoice | None = None,
 ) -> RunSpec:
     """A run of the loaded class ``cls`` of ``model`` from its user's words: ``name=value``
     parameters, ``+500ms`` clock advances among the events; a ``RunError`` says what is
-    wrong before anything starts."""
+    wrong before anything starts. With ``robot``, ``cls`` is the class loaded for it."""
     success_outcome(cls, success)
+    robot_name = robot.name if robot is not None else None
     return RunSpec(
         model=model,
         search_path=tuple(search_path),
         params=parameters(cls, params),
         adapter=adapter,
-        adapter_options=adapter_options(adapter, seed, noise, video, script),
+        adapter_options=adapter_options(adapter, seed, noise, video, script, robot_name),
         seed=seed,
         noise=noise,
         trace=trace,
         events=tuple(parse_delay(e) if e.startswith("+") else e for e in events),
         success=success,
+        robot=robot,
     )
 
 

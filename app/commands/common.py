@@ -85,11 +85,17 @@ def path_option(parser: argparse.ArgumentParser) -> None:
 
 
 def run_arguments(parser: argparse.ArgumentParser, params: str) -> None:
-    """What every command that runs a statechart takes: the model, the adapter, parameter
-    values (``params`` says what they are to this command), the success outcome, the model
-    path."""
+    """What every command that runs a statechart takes: the model, the adapter and its robot,
+    parameter values (``params`` says what they are to this command), the success outcome,
+    the model path."""
     parser.add_argument("model", help="the .lr file of the statechart to run")
     parser.add_argument("--adapter", help="adapter name (see 'list adapters'); none for plain")
+    parser.add_argument(
+        "--robot",
+        metavar="NAME",
+        help="the robot in the cell's robot slot (see 'list robots'; default: the adapter's, "
+        "the LWR)",
+    )
     parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE", help=params)
     parser.add_argument(
         "--success", metavar="OUTCOME", help="outcome that counts as success (default: the first)"

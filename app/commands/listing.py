@@ -1,4 +1,5 @@
-"""``lightrocks list``: the registered languages, CoCos, generators, adapters or scenes."""
+"""``lightrocks list``: the registered languages, CoCos, generators, adapters, scenes or
+robots."""
 
 from __future__ import annotations
 
@@ -8,14 +9,19 @@ from lightrocks.app.commands.common import EXIT_OK, all_cocos, command
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:
-    parser = sub.add_parser("list", help="list languages, CoCos, generators, adapters or scenes")
-    parser.add_argument("what", choices=("languages", "cocos", "generators", "adapters", "scenes"))
+    parser = sub.add_parser(
+        "list", help="list languages, CoCos, generators, adapters, scenes or robots"
+    )
+    parser.add_argument(
+        "what", choices=("languages", "cocos", "generators", "adapters", "scenes", "robots")
+    )
 
 
 @command(_configure_list)
 def cmd_list(args: argparse.Namespace) -> int:
     from importlib.metadata import entry_points
 
+    from lightrocks.app.robots import registered
     from lightrocks.workbench.extensions import language_extensions
     from lightrocks.workbench.generators import load_generator
     from lightrocks.workbench.languages import languages
@@ -30,6 +36,8 @@ def cmd_list(args: argparse.Namespace) -> int:
             (e.name, e.value, load_generator(e.name).description)
             for e in sorted(entry_points(group="lightrocks.generators"), key=str)
         ]
+    elif args.what == "robots":
+        rows = [(n, r.device_type, r.description) for n, r in sorted(registered().items())]
     else:
         group = f"lightrocks.{args.what}"
         rows = [(e.name, e.value, "") for e in sorted(entry_points(group=group), key=str)]

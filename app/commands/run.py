@@ -69,6 +69,7 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
 def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.app import display, pipeline, values
     from lightrocks.app.errors import ModelError, RunError
+    from lightrocks.app.robots import choose
     from lightrocks.app.run import success_outcome
     from lightrocks.app.script import read_script
     from lightrocks.app.seeds import run_seeds
@@ -92,7 +93,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--monitor watches a single run: leave out --seeds")
     try:
         noise = values.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
-        cls = pipeline.load(model, search_path)
+        robot = choose(args.robot) if args.robot is not None else None
+        cls = pipeline.load(model, search_path, robot)
         wanted = success_outcome(cls, args.success)
         script = read_script(script_file, cls) if script_file else None
         spec = run_spec(
@@ -108,6 +110,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             trace=trace,
             events=events,
             success=args.success,
+            robot=robot,
         )
         if args.seeds is not None:
             seeds = range(args.seed, args.seed + args.seeds)

@@ -58,6 +58,7 @@ def _configure_sweep(sub: argparse._SubParsersAction) -> None:
 def _arguments(args: argparse.Namespace, model: Path, models: str) -> dict[str, Any]:
     """What decides a sweep's runs (not where they run): a resumed sweep must match them.
     ``models`` names the generated code, a digest of every model the run loads."""
+    robot = {"robot": args.robot} if args.robot is not None else {}
     return {
         "model": str(model),
         "models": models,
@@ -69,6 +70,7 @@ def _arguments(args: argparse.Namespace, model: Path, models: str) -> dict[str, 
         "perception_noise": args.perception_noise,
         "seed": args.seed,
         "seeds": args.seeds,
+        **robot,
     }
 
 
@@ -76,6 +78,7 @@ def _arguments(args: argparse.Namespace, model: Path, models: str) -> dict[str, 
 def cmd_sweep(args: argparse.Namespace) -> int:
     from lightrocks.app import display, pipeline, sweep, sweeplog, values
     from lightrocks.app.errors import ModelError, RunError
+    from lightrocks.app.robots import choose
     from lightrocks.app.run import success_outcome
     from lightrocks.app.specs import run_spec
     from lightrocks.workbench.generators import GenerationError
@@ -95,7 +98,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     try:
         noises = [values.parse_noise(level) for level in args.perception_noise.split(";")]
         grid = sweep.parse_grid(args.grid)
-        cls = pipeline.load(model, search_path)
+        robot = choose(args.robot) if args.robot is not None else None
+        cls = pipeline.load(model, search_path, robot)
         wanted = success_outcome(cls, args.success)
         points = sweep.grid_points(grid, noises)
         specs = [  # every value is parsed and checked before the first run starts
@@ -108,6 +112,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                 seed=args.seed,
                 noise=point.noise,
                 success=args.success,
+                robot=robot,
             )
             for point in points
         ]

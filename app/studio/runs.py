@@ -67,6 +67,13 @@ def adapters() -> list[str]:
     return sorted(e.name for e in entry_points(group="lightrocks.adapters"))
 
 
+def robots() -> list[str]:
+    """The robots registered (``lightrocks list robots``)."""
+    from lightrocks.app.robots import registered
+
+    return sorted(registered())
+
+
 class Runs:
     """The studio's run, if it started one."""
 
@@ -90,12 +97,16 @@ class Runs:
                     return found.resolve()
         raise EditError(f"no outcome script '{shown}' below the studio's folders")
 
-    def start(self, chart: str, model: Path, adapter: str, script: str, paused: bool) -> Run:
-        """Check, generate and load the chart, then run it in a thread, watched; refused
-        while another run is under way. The model's errors and a wrong script are refused
-        before anything runs (``ModelError``, ``RunError``)."""
+    def start(
+        self, chart: str, model: Path, adapter: str, script: str, paused: bool, robot: str = ""
+    ) -> Run:
+        """Check, generate and load the chart (for ``robot`` in its cell's robot slot, where
+        one is named), then run it in a thread, watched; refused while another run is under
+        way. The model's errors, an unknown robot and a wrong script are refused before
+        anything runs (``ModelError``, ``RunError``)."""
         from lightrocks.app import pipeline
         from lightrocks.app.monitor.watch import monitor_for
+        from lightrocks.app.robots import choose
         from lightrocks.app.script import read_script
         from lightrocks.app.specs import run_spec
 
@@ -104,14 +115,22 @@ class Runs:
         with self._lock:
             if self.current is not None and self.current.thread.is_alive():
                 raise Busy(f"{self.current.chart} is running: abort it first")
-            cls = pipeline.load(model, self.folders)
+            chosen = choose(robot) if robot else None
+            cls = pipeline.load(model, self.folders, chosen)
             file = self.script_path(script)
             scripted = read_script(file, cls) if file else None
             frames = (
                 tempfile.mkdtemp(prefix="lightrocks-studio-view-") if adapter == "mujoco" else None
             )
             spec = run_spec(
-                cls, model, self.folders, (), adapter or None, script=scripted, video=frames
+                cls,
+                model,
+                self.folders,
+                (),
+                adapter or None,
+                script=scripted,
+                video=frames,
+                robot=chosen,
             )
             monitor, watch = monitor_for(model, self.folders, cls.NAME, paused=paused)
             run = Run(chart, monitor, threading.Thread(daemon=True, name="studio-run"))

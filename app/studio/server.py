@@ -24,7 +24,7 @@ from typing import Any
 
 from lightrocks.app.errors import ModelError, RunError
 from lightrocks.app.monitor.guard import Guard, serve
-from lightrocks.app.studio.runs import Busy, Runs, adapters
+from lightrocks.app.studio.runs import Busy, Runs, adapters, robots
 from lightrocks.app.studio.workspace import Conflict, Studio, stamp
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.generators import GenerationError
@@ -171,18 +171,23 @@ class StudioServer:
             return {"chart": self.studio.create(*given)}
 
         def start(body: dict[str, Any], request: Request) -> dict[str, Any]:
-            given = [body.get(k, "") for k in ("chart", "adapter", "script")]
+            given = [body.get(k, "") for k in ("chart", "adapter", "script", "robot")]
             if not all(isinstance(v, str) for v in given) or not isinstance(
                 body.get("paused", False), bool
             ):
-                raise BadRequest("a run names its chart, adapter and script as texts")
-            chart, adapter, script = given
+                raise BadRequest("a run names its chart, adapter, script and robot as texts")
+            chart, adapter, script, robot = given
             model = self.studio.component(chart).loaded.path
-            self.runs.start(chart, model, adapter, script, body.get("paused", False))
+            self.runs.start(chart, model, adapter, script, body.get("paused", False), robot)
             return self.runs.status()
 
         def run_options() -> dict[str, Any]:
-            return {"adapters": adapters(), "scripts": self.runs.scripts(), **self.runs.status()}
+            return {
+                "adapters": adapters(),
+                "robots": robots(),
+                "scripts": self.runs.scripts(),
+                **self.runs.status(),
+            }
 
         async def frame(request: Request) -> Response:
             run = self.runs.current

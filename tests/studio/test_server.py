@@ -139,9 +139,11 @@ def test_a_run_is_served_by_the_monitor_s_app_below_run(served) -> None:
     assert get(url, "run/")[0] == 404  # no run yet
     options = json.loads(get(url, "runs")[1])
     assert "dryrun" in options["adapters"]
+    assert "lwr" in options["robots"]
     assert "examples/din_rail/assembled.dryrun.json" in options["scripts"]
     for body, message in [
         ({"chart": "din_rail.tasks.AssembleRail", "adapter": "warp"}, "no adapter 'warp'"),
+        ({"chart": "din_rail.tasks.AssembleRail", "robot": "atlas"}, "unknown robot 'atlas'"),
         ({"chart": "no.Such", "adapter": "dryrun"}, "no statechart 'no.Such'"),
         ({"chart": "din_rail.tasks.AssembleRail", "script": "x.json"}, "no outcome script"),
         ({"chart": "din_rail.tasks.AssembleRail", "paused": "yes"}, "as texts"),

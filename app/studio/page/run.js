@@ -113,7 +113,7 @@ function wireRun() {
   $("run-start").addEventListener("click", async () => {
     runSay("starting…");
     const body = { chart: root, adapter: $("run-adapter").value, script: $("run-script").value,
-      paused: $("run-paused").checked };
+      robot: $("run-robot").value, paused: $("run-paused").checked };
     const answer = await api("runs/start", {}, body);
     const status = await answer.json();
     if (!answer.ok) { runSay(`refused: ${status.error}`); return; }
@@ -130,6 +130,7 @@ function wireRun() {
   api("runs").then(answer => answer.json()).then(options => {
     $("run-adapter").replaceChildren(...options.adapters.map(a => new Option(a, a)), new Option("none (plain chart)", ""));
     if (options.adapters.includes("dryrun")) $("run-adapter").value = "dryrun";
+    $("run-robot").replaceChildren(new Option("the cell's", ""), ...options.robots.map(r => new Option(r, r)));
     $("run-script").replaceChildren(new Option("none", ""), ...options.scripts.map(s => new Option(s, s)));
     runButtons(options);
     if (options.chart) watchRun();
