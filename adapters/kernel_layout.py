@@ -152,7 +152,10 @@ F_TCP)."""
 T_ACCELERATION = T_LOW + ARM_DOF * ARM_DOF
 T_PLACEMENT = T_ACCELERATION + ARM_DOF
 T_BODY = T_PLACEMENT + 12
-T_BOXES = T_BODY + 12
+T_TORQUE_LIMIT = T_BODY + 12
+"""The arm motors' torque limits [Nm]: the twin clamps the controller's torques to them, as
+MuJoCo clamps a motor's control to its range."""
+T_BOXES = T_TORQUE_LIMIT + ARM_DOF
 """The static boxes, T_BOX values each (offsets BOX_*)."""
 BOX_REACH = 0
 """The world-axis box (x, y, z low, then high) the hand origin must enter to touch the box."""

@@ -52,6 +52,7 @@ from lightrocks.adapters.kernel_layout import (
     T_PLACEMENT,
     T_SLIP,
     T_STIFFNESS,
+    T_TORQUE_LIMIT,
     TAU,
 )
 from lightrocks.adapters.kernel_math import cholesky, cholesky_solve
@@ -68,15 +69,16 @@ def twin_step(
     grasp: float,
     alone: bool,
 ) -> int:
-    """A twin step as far as native code goes: generalized forces ``−damping q̇ + τ``, no
-    contact yet, and the static boxes whose reach holds the hand origin flagged. With none and
-    the arm ``alone`` (no fixture twin to step), the whole step (``twin_integrate``), and
-    returns -1; otherwise returns how many boxes are near, and the caller adds the
-    interactions and integrates."""
+    """A twin step as far as native code goes: generalized forces ``−damping q̇ + τ`` (τ
+    clamped to the motors' torque limits), no contact yet, and the static boxes whose reach
+    holds the hand origin flagged. With none and the arm ``alone`` (no fixture twin to step),
+    the whole step (``twin_integrate``), and returns -1; otherwise returns how many boxes are
+    near, and the caller adds the interactions and integrates."""
     for j in range(NV):
         twin[T_GENERALIZED + j] = twin[T_DAMPING + j] * arm[STATE + NV + j]
     for j in range(ARM_DOF):
-        twin[T_GENERALIZED + j] += arm[TAU + j]
+        limit = twin[T_TORQUE_LIMIT + j]
+        twin[T_GENERALIZED + j] += min(max(arm[TAU + j], -limit), limit)
     for i in range(6):
         twin[T_CONTACT + i] = 0.0
     frame_placement(index, twin, T_HAND, twin, T_PLACEMENT, T_PLACEMENT + 9)

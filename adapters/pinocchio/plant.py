@@ -1,9 +1,10 @@
 """The fast twin: Pinocchio rigid-body dynamics with penalty contacts against static boxes.
 
 The arm is integrated with semi-implicit Euler at 1 kHz from ``M a = τ − h − damping·v + Jᵀf``
-(joint damping from the MJCF), with the arm block of the whole robot's mass matrix (Pinocchio's
-CRBA) and its nonlinear effects h (RNEA), the fingers where they are: the very terms the
-controllers read, computed once per step at the state it reached. The fingers are a
+(joint damping from the MJCF; τ clamped to the motors' torque limits, as MuJoCo clamps it),
+with the arm block of the whole robot's mass matrix (Pinocchio's CRBA) and its nonlinear
+effects h (RNEA), the fingers where they are: the very terms the controllers read, computed
+once per step at the state it reached. The fingers are a
 first-order model: they move at the speed the finger damping of the MJCF gives the
 grip force and stop when they would press into a box; their acceleration does not act on
 the arm. Contacts are the corners of the hand and finger boxes against
@@ -84,6 +85,9 @@ class PinocchioPlant:
         """Parameters, per-step forces and the static boxes (layout in adapters.kernels)."""
         damping = [self.model.dof_damping[j.dofadr[0]] for j in joints]
         twin[k.T_DAMPING : k.T_DAMPING + NV] = -np.array(damping)
+        twin[k.T_TORQUE_LIMIT : k.T_TORQUE_LIMIT + ARM_DOF] = [
+            self._torque_limit(name) for name in chosen.arm_joints
+        ]
         self._generalized = twin[k.T_GENERALIZED : k.T_GENERALIZED + NV]
         hand = self.model.body(chosen.hand).id
         load_com = self._in_body(hand, self.data.subtree_com[hand])
@@ -115,6 +119,14 @@ class PinocchioPlant:
     def fixture(self) -> FixtureTwin | None:
         """The scene's analytic fixture twin, if it has one."""
         return self._fixture
+
+    def _torque_limit(self, joint: str) -> float:
+        """The largest torque [Nm] of the motor that drives a joint (the MJCF's ``ctrlrange``;
+        unlimited without one)."""
+        motor = self.model.actuator(joint)
+        if not self.model.actuator_ctrllimited[motor.id]:
+            return np.inf
+        return float(max(-motor.ctrlrange[0], motor.ctrlrange[1]))
 
     def _in_body(self, body: int, world_point: np.ndarray) -> np.ndarray:
         rotation = self.data.xmat[body].reshape(3, 3)

@@ -47,9 +47,9 @@ ROBOT = UrdfRobot(
     root="panda_link0",
     hand="panda_hand",
     fingers=("panda_leftfinger", "panda_rightfinger"),
-    # Elbow up, joints 1, 3, 5 at zero, joint 7 at libfranka's 45°: the TCP where the LWR's
-    # is, (0.4893, 0, 0.3166) m, pointing down with its x axis along -x of the world.
-    ready=(0.0, -0.154182345697, 0.0, -2.291341107772, 0.0, 2.137158762074, math.pi / 4),
+    # Elbow up, joints 1, 3, 5 at zero: the TCP where the LWR's is, (0.4893, 0, 0.3166) m,
+    # pointing down, turned 10° further about the world z axis than the LWR's (joint 7 at 35°).
+    ready=(0.0, -0.154182345697, 0.0, -2.291341107772, 0.0, 2.137158762074, math.radians(35)),
     joint_stiffness=(600.0, 600.0, 600.0, 600.0, 250.0, 150.0, 50.0),
     cartesian_stiffness=(3000.0, 3000.0, 3000.0, 300.0, 300.0, 300.0),
     finger_damping=200.0,
@@ -57,6 +57,6 @@ ROBOT = UrdfRobot(
     base=(0.0, 0.0, 0.0),
     tcp=((0.0, 0.0, 0.0979), (0.0, 0.0, 0.0, 1.0)),
     hand_box=((0.0, -0.0018, 0.02), (0.0317, 0.1022, 0.046)),
-    armature=(0.1, 0.1, 0.1, 0.1, 0.05, 0.05, 0.05, 0.01, 0.01),
+    armature=(0.1, 0.1, 0.1, 0.1, 0.05, 0.05, 0.05, 0.045, 0.045),
     damping=(0.5, 0.5, 0.5, 0.5, 0.2, 0.2, 0.2),
 )

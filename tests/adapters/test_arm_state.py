@@ -133,6 +133,29 @@ def test_a_twin_step_follows_pinocchios_forward_dynamics_with_the_fingers_where_
         assert np.array_equal(plant.q[ARM_DOF:], q[ARM_DOF:])
 
 
+def test_the_twin_clamps_the_torques_to_the_motors_limits_as_mujoco_does() -> None:
+    """Torques beyond the motors' ranges act as the limits themselves (MuJoCo clamps a motor's
+    control to its ctrlrange): the twin's step with 10 kNm equals ABA's with the limits."""
+    plant = PinocchioPlant("empty")
+    robot = LWR.model()
+    fingers = [robot.getJointId(name) for name in LWR.finger_joints]
+    limits = plant.model.actuator_ctrlrange[:ARM_DOF, 1]
+    assert list(limits) == [320, 320, 176, 176, 110, 40, 40]
+    damping = -plant._twin[k.T_DAMPING : k.T_DAMPING + ARM_DOF]
+    q, v = plant.q.copy(), plant.v.copy()
+    tau = np.array([1e4, -1e4, 1e4, -1e4, 1e4, -1e4, 1e4])
+    arm = pin.buildReducedModel(robot, fingers, q)
+    expected = pin.aba(
+        arm,
+        arm.createData(),
+        q[:ARM_DOF],
+        v[:ARM_DOF],
+        np.sign(tau) * limits - damping * v[:ARM_DOF],
+    )
+    plant.step(tau, grip=0.0)
+    assert np.allclose((plant.v[:ARM_DOF] - v[:ARM_DOF]) / k.DT, expected, atol=1e-8)
+
+
 def test_the_native_reads_need_the_frames_on_one_joint_that_the_arm_joints_move() -> None:
     robot = LWR.model()
 
