@@ -335,7 +335,7 @@ class SimulatedCell:
     # -- the Adapter protocol ---------------------------------------------------------------
 
     def devices(self) -> Mapping[str, str]:
-        return {"robot": self.robot.device, "gripper": "ParallelGripper", "camera": "Camera"}
+        return {"robot": self.robot.device_type, "gripper": "ParallelGripper", "camera": "Camera"}
 
     def snapshot(self) -> SimpleNamespace:
         """A frozen copy of every sensor value now."""

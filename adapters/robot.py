@@ -32,7 +32,7 @@ class Robot(ABC):
     the same names; MuJoCo's motors carry the names of the joints they drive.
     """
 
-    device: str
+    device_type: str
     """The device type a cell's ``robot`` slot binds to (``LWR``)."""
     description: str
     """One line for ``lightrocks list robots``."""
@@ -62,9 +62,9 @@ class Robot(ABC):
     def __post_init__(self) -> None:
         for name in ("arm_joints", "ready", "joint_stiffness"):
             if len(getattr(self, name)) != ARM_DOF:
-                raise ValueError(f"robot {self.device}: {name} must have {ARM_DOF} entries")
+                raise ValueError(f"robot {self.device_type}: {name} must have {ARM_DOF} entries")
         if len(self.cartesian_stiffness) != 6:
-            raise ValueError(f"robot {self.device}: cartesian_stiffness must have 6 entries")
+            raise ValueError(f"robot {self.device_type}: cartesian_stiffness must have 6 entries")
 
     @property
     def joints(self) -> tuple[str, ...]:

@@ -62,7 +62,7 @@ class UrdfRobot(Robot):
     def __post_init__(self) -> None:
         super().__post_init__()
         if len(self.armature) != len(self.joints) or len(self.damping) != ARM_DOF:
-            raise ValueError(f"robot {self.device}: an armature per joint, damping per arm joint")
+            raise ValueError(f"robot {self.device_type}: armature per joint, damping per arm joint")
 
     def mjcf(self) -> bytes:
         return _mjcf(self)
@@ -93,7 +93,7 @@ class UrdfRobot(Robot):
     def spec(self) -> mujoco.MjSpec:
         """MuJoCo's reading of the URDF with the LightRocks interface added."""
         spec = mujoco.MjSpec.from_string(_for_mujoco(self.locate()))
-        spec.modelname = self.device.lower()
+        spec.modelname = self.device_type.lower()
         spec.body(self.root).pos = self.base
         joints = [spec.joint(name) for name in self.joints]
         gripper_damping = (self.finger_damping,) * len(self.finger_joints)

@@ -9,7 +9,7 @@ from lightrocks.adapters.robot import MjcfRobot
 from lightrocks.adapters.robot_model import MODELS_DIR
 
 ROBOT = MjcfRobot(
-    device="LWR",
+    device_type="LWR",
     description="7-DoF KUKA LWR/iiwa-like arm with a parallel gripper (primitive geoms)",
     arm_joints=tuple(f"j{i}" for i in range(1, 8)),
     finger_joints=("finger_left", "finger_right"),

@@ -40,7 +40,7 @@ def urdf() -> Path:
 
 
 ROBOT = UrdfRobot(
-    device="Panda",
+    device_type="Panda",
     description="Franka Emika Panda with the Franka Hand (URDF of example-robot-data)",
     arm_joints=tuple(f"panda_joint{i}" for i in range(1, 8)),
     finger_joints=("panda_finger_joint1", "panda_finger_joint2"),

@@ -28,7 +28,7 @@ def robot_model(installed) -> mujoco.MjModel:
 
 def test_the_panda_is_registered_with_its_names_and_gains():
     found = robot("panda")
-    assert (found.device, found.root, found.hand) == ("Panda", "panda_link0", "panda_hand")
+    assert (found.device_type, found.root, found.hand) == ("Panda", "panda_link0", "panda_hand")
     assert found.joints == (
         *(f"panda_joint{i}" for i in range(1, 8)),
         "panda_finger_joint1",
@@ -118,7 +118,7 @@ def test_without_example_robot_data_the_panda_says_what_to_install(monkeypatch):
     ):
         panda.urdf()
     assert issubclass(RobotDataMissing, ValueError)
-    assert robot("panda").device == "Panda"  # listing robots reads no model files
+    assert robot("panda").device_type == "Panda"  # listing robots reads no model files
 
 
 def test_example_robot_data_without_the_panda_urdf_is_an_error_too(monkeypatch):

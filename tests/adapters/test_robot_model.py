@@ -98,7 +98,7 @@ def test_scene_registry_rejects_unknown_names():
 
 
 def test_robot_registry_names_the_known_robots_for_an_unknown_one():
-    assert robots()["lwr"].device == "LWR"
+    assert robots()["lwr"].device_type == "LWR"
     for bad in ("nowhere", "LWR", "screwing", "", None):
         with pytest.raises(UnknownRobot, match=r"unknown robot .*; known robots: .*lwr"):
             robot(bad)
