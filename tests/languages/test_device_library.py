@@ -81,3 +81,40 @@ def test_what_two_device_types_differ_in_is_named(tmp_path: Path) -> None:
         "sensor 'load' is Force load in Arm, Torque load in Other",
     ]
     assert differences(arm, arm) == []
+
+
+PANDA_CELL = """package lab;
+
+import lightrocks.robots.*;
+
+cell Lab {
+  robot : Panda;
+}
+"""
+
+PUSH = """package lab;
+
+import lab.Lab;
+
+<<action>> statechart Push {
+  do / robot.moveCartesian(goal = robot.tcp, speed = {speed});
+
+  end condition done [robot.goalReached];
+}
+"""
+
+
+def test_check_holds_a_cell_of_the_panda_to_its_ranges(tmp_path: Path) -> None:
+    (tmp_path / "lab").mkdir()
+    (tmp_path / "lab" / "Lab.lrd").write_text(PANDA_CELL, encoding="utf-8")
+    push = tmp_path / "lab" / "Push.lr"
+    push.write_text(PUSH.replace("{speed}", "0.8 m/s"), encoding="utf-8")
+    assert check([push], [tmp_path]).diagnostics.items == []  # beyond the LWR's 0.5 m/s
+    text = PUSH.replace("{speed}", "1.2 m/s")
+    push.write_text(text, encoding="utf-8")
+    [finding] = check([push], [tmp_path]).diagnostics.items
+    column = text.splitlines()[5].index("1.2 m/s") + 1
+    assert (finding.code, finding.line, finding.column) == ("LR0305", 6, column)
+    assert finding.message == (
+        "robot.moveCartesian(speed) = 1200 mm/s is outside its safe range 1 mm/s .. 1000 mm/s"
+    )
