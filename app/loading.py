@@ -89,7 +89,7 @@ def load_component(
     """Check the model, generate it (once per content) and import the class of its chart;
     with ``robot``, with the robot in the cell's robot slot."""
     context = check([model], list(search_path))
-    rebound = rebinding(context, model, robot) if robot is not None else None
+    rebound = rebinding(model, search_path, robot) if robot is not None else None
     if rebound is not None:
         context = check_rebound(model, search_path, rebound)
     if context.diagnostics.has_errors:

@@ -38,11 +38,14 @@ class Rebinding:
     description: str
 
 
-def rebinding(context: CheckContext, model: Path, robot: RobotChoice) -> Rebinding | None:
+def rebinding(model: Path, search_path: Sequence[Path], robot: RobotChoice) -> Rebinding | None:
     """The re-binding a run of ``model`` on ``robot`` needs; ``None`` when the model has no
     cell with a robot slot, or the slot already has the robot's type. A type that does not
-    offer the slot's interface is a ``ModelError`` naming what differs."""
-    workspace = context.workspace
+    offer the slot's interface is a ``ModelError`` naming what differs.
+
+    The models are loaded into a workspace of this look-up's own: finding the robot's type
+    may load packages, which must not reach the remembered workspace of an earlier check."""
+    workspace = load([model], list(search_path)).workspace
     loaded = workspace.files.get(model.resolve())
     cell = _cell(workspace, loaded) if loaded is not None else None
     slot = next((d for d in cell.node.devices if d.name == ROBOT_SLOT), None) if cell else None

@@ -207,6 +207,49 @@ def test_the_rebinding_does_not_reach_a_later_run_without_robot(tmp_path: Path) 
     assert pipeline.load(press, [tmp_path], choose("lwr")) is lwr  # the slot's own robot
 
 
+SOLO = """package solo;
+
+cell Solo {
+  robot : Tripod;
+}
+
+device Tripod {
+  command moveCartesian(Frame goal, Frame tool);
+  sensor Boolean goalReached;
+}
+"""
+
+WAVE = """package solo;
+
+import solo.Solo;
+
+<<action>> statechart Wave {
+  do / robot.moveCartesian(goal = transl(0 mm, 0 mm, 1 mm), tool = transl(0 mm, 0 mm, 0 mm));
+
+  end condition done [robot.goalReached];
+}
+"""
+
+
+def test_looking_for_the_robots_type_changes_nothing_a_run_without_robot_sees(
+    tmp_path: Path,
+) -> None:
+    """A cell of a robot type of its own: the Panda is looked up in the device library, which
+    the cell does not use, in a workspace of its own, so the checked model of a run without
+    ``--robot`` stays as it was (and so does the generated code it is keyed by)."""
+    (tmp_path / "solo").mkdir()
+    (tmp_path / "solo" / "Solo.lrd").write_text(SOLO, encoding="utf-8")
+    wave = tmp_path / "solo" / "Wave.lr"
+    wave.write_text(WAVE, encoding="utf-8")
+    own = pipeline.load(wave, [tmp_path])
+    loaded = {u.path.name for u in check([wave], [tmp_path]).workspace.loaded_units()}
+    assert loaded == {"Solo.lrd", "Wave.lr", "types.lrd"}
+    with pytest.raises(ModelError, match="Panda has a sensor 'tcp' that Tripod does not have"):
+        pipeline.load(wave, [tmp_path], choose("panda"))
+    assert {u.path.name for u in check([wave], [tmp_path]).workspace.loaded_units()} == loaded
+    assert pipeline.load(wave, [tmp_path]) is own
+
+
 def test_a_run_parameter_is_held_to_the_chosen_robots_range(tmp_path: Path) -> None:
     press = models(tmp_path)
     value = "stiffness=[4000 N/m, 1 N/m, 1 N/m, 1 Nm/rad, 1 Nm/rad, 1 Nm/rad]"
