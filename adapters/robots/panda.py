@@ -7,9 +7,16 @@ Numbers and where they come from:
 - joint stiffness of libfranka's impedance examples (600, 600, 600, 600, 250, 150, 50 Nm/rad),
   Cartesian stiffness of libfranka's default Cartesian impedance (3000 N/m, 300 Nm/rad);
 - armature and damping: the URDF has only 0.003 Nm s/rad of damping and no rotor inertia;
-  the values are the LWR's (larger motors on joints 1–4);
+  the arm's values are the LWR's (larger motors on joints 1–4); the 15 g fingers get 0.045 kg
+  of armature, the LWR's 0.06 kg in all, without which they chattered on a part gripped with
+  80 N;
 - the TCP 15 mm above the fingertips, as on the LWR, so that the skills' grasp heights hold:
-  the rubber pads end 0.0584 + 0.0545 = 0.1129 m below the hand's origin (the flange);
+  the rubber pads end 0.0584 + 0.0545 = 0.1129 m below the hand's origin (the flange); it is
+  turned 180° about the hand's z axis, so that the screwing task's grasp (``yaw = 90°``) and
+  its turns of +179.5° keep joint 7 (±166°) between -45° and 134.5°;
+- the ready pose turned 10° further about the world z axis than the LWR's, so that the turn
+  to the rail's grasp orientation (180° from the LWR's ready one) is 170° the way joint 7 has
+  room for;
 - the hand's box is the bounding box of its collision mesh (hand.stl).
 """
 

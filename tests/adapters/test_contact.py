@@ -1,12 +1,30 @@
-"""Force stop conditions fire on contact with the static block in both adapters."""
+"""Force stop conditions fire on contact with the static block in both adapters, with every
+robot: its fingertips are 15 mm below its TCP."""
 
 import numpy as np
 import pinocchio as pin
+import pytest
 
+from lightrocks.adapters.mujoco import MujocoAdapter
+from lightrocks.adapters.pinocchio import PinocchioAdapter
 from lightrocks.runtime.contract import Command, StopCondition
 
 FINGERTIP_BELOW_TCP = 0.015
 BLOCK_TOP = 0.15
+
+
+@pytest.fixture(
+    params=[
+        (kind, robot) for kind in (MujocoAdapter, PinocchioAdapter) for robot in ("lwr", "panda")
+    ],
+    ids=lambda param: f"{param[0].__name__}-{param[1]}",
+)
+def adapter(request, installed):
+    kind, robot = request.param
+    installed(robot)
+    instance = kind("empty", robot=robot)
+    yield instance
+    instance.close()
 
 
 def test_tared_wrench_at_rest_is_small(adapter):
