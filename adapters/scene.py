@@ -16,6 +16,13 @@ from typing import Any, Protocol
 import mujoco
 import numpy as np
 
+from lightrocks.runtime.contract import AdapterError
+
+
+class SceneFault(AdapterError):
+    """A scene's MJCF does not load or one of its hooks raised: the scene author's mistake,
+    named with the scene, so that a run reports it as the scene's and not as its own."""
+
 
 class FixtureTwin(Protocol):
     """The analytic fixture of a scene in the Pinocchio twin, which has no contact physics

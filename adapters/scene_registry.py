@@ -11,11 +11,12 @@ from __future__ import annotations
 
 from functools import cache
 from importlib.metadata import entry_points
+from pathlib import Path
 
 import mujoco
 
 from lightrocks.adapters.robot import Robot
-from lightrocks.adapters.scene import Scene
+from lightrocks.adapters.scene import Scene, SceneFault
 
 
 class UnknownScene(ValueError):
@@ -53,17 +54,35 @@ def robot(name: str) -> Robot:
 
 
 def load_model(name: str, robot_name: str = "lwr") -> mujoco.MjModel:
-    """The MuJoCo model of a scene with the named robot as its ``robot.xml``."""
+    """The MuJoCo model of a scene with the named robot as its ``robot.xml``; an MJCF that
+    does not load is the scene's fault (:class:`SceneFault`), named with the scene and file."""
     chosen = robot(robot_name)
     mjcf = chosen.mjcf()
     assets = {"robot.xml": mjcf, f"{robot_name}.xml": mjcf}
-    model = mujoco.MjModel.from_xml_path(str(scene(name).mjcf), assets)
+    path = scene(name).mjcf
+    if not Path(path).is_file():
+        raise SceneFault(f"scene {name!r}: its MJCF file {path} does not exist")
+    try:
+        model = mujoco.MjModel.from_xml_path(str(path), assets)
+    except ValueError as error:
+        raise SceneFault(f"scene {name!r}: {path} does not load: {_one_line(error)}") from None
     if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, chosen.arm_joints[0]) < 0:
-        raise ValueError(
-            f"scene {name!r} does not include the robot {robot_name!r}: "
-            'its MJCF must include <include file="robot.xml"/>'
+        raise SceneFault(
+            f"scene {name!r}: {path} does not include the robot {robot_name!r}: {ROBOT_INCLUDE}"
         )
     return model
+
+
+ROBOT_INCLUDE = 'a scene includes the robot of the run as <include file="robot.xml"/>'
+
+
+def _one_line(error: ValueError) -> str:
+    """MuJoCo's multi-line XML message on one line; a file an include could not open gets
+    the rule for including the robot."""
+    text = "; ".join(line.strip().rstrip(":") for line in str(error).splitlines() if line.strip())
+    if "Error opening file" in text and "'include'" in text:
+        text += f" ({ROBOT_INCLUDE}; other included files lie beside the scene's MJCF)"
+    return text
 
 
 def objects(model: mujoco.MjModel, robot_body: str) -> list[str]:

@@ -8,7 +8,7 @@ from collections.abc import Callable
 from importlib.metadata import entry_points
 from typing import Any
 
-from lightrocks.app.errors import RunError
+from lightrocks.app.errors import RunError, SceneError
 from lightrocks.app.script import Script
 from lightrocks.app.values import Noise
 
@@ -68,12 +68,19 @@ def _taking(option: str) -> list[str]:
 
 
 def adapter_for(name: str, scene: str | None, **options: Any) -> Any:
-    """The adapter on the model's scene; adapters reject an unknown scene with ValueError."""
+    """The adapter on the model's scene; adapters reject an unknown scene with ValueError
+    (the user's mistake) and a scene that does not load with ``SceneFault`` (its author's)."""
     factory = adapter_factory(name)
     try:
         return factory(scene=scene, **options)
     except ValueError as error:
         raise RunError(f"adapter '{name}': {error}") from None
+    except Exception as error:
+        from lightrocks.adapters.scene import SceneFault  # loads MuJoCo: not for the dry run
+
+        if isinstance(error, SceneFault):
+            raise SceneError(str(error)) from None
+        raise
 
 
 def scene_of(cls: type) -> str | None:

@@ -9,3 +9,8 @@ class RunError(Exception):
 
 class ModelError(Exception):
     """The model has check errors; the argument is the report."""
+
+
+class SceneError(Exception):
+    """The scene of a run is broken (its MJCF does not load, a hook raised): the scene
+    author's to fix, reported with exit code 1, not as a wrong use of the command."""

@@ -35,6 +35,13 @@ def note(message: str) -> None:
     print(f"lightrocks: note: {printable(message)}", file=sys.stderr)
 
 
+def complain(message: str) -> None:
+    """An error that is not a wrong use of the command (exit 1) on stderr; neutralised."""
+    from lightrocks.workbench.report import printable
+
+    print(f"lightrocks: error: {printable(message)}", file=sys.stderr)
+
+
 class UsageError(Exception):
     """Wrong use of the command line: reported with exit code 2."""
 

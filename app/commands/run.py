@@ -8,6 +8,7 @@ from lightrocks.app.commands.common import (
     EXIT_FINDINGS,
     UsageError,
     command,
+    complain,
     existing_paths,
     run_arguments,
     statechart_file,
@@ -68,7 +69,7 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
 @command(_configure_run)
 def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.app import display, pipeline, values
-    from lightrocks.app.errors import ModelError, RunError
+    from lightrocks.app.errors import ModelError, RunError, SceneError
     from lightrocks.app.robots import choose
     from lightrocks.app.run import success_outcome
     from lightrocks.app.script import read_script
@@ -125,6 +126,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         return display.show(cls.NAME, result)
     except ModelError as error:
         print(error)  # the findings, already neutralised by report.text
+        return EXIT_FINDINGS
+    except SceneError as error:
+        complain(str(error))
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None

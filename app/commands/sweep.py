@@ -12,6 +12,7 @@ from lightrocks.app.commands.common import (
     EXIT_OK,
     UsageError,
     command,
+    complain,
     existing_paths,
     note,
     run_arguments,
@@ -77,7 +78,7 @@ def _arguments(args: argparse.Namespace, model: Path, models: str) -> dict[str, 
 @command(_configure_sweep)
 def cmd_sweep(args: argparse.Namespace) -> int:
     from lightrocks.app import display, pipeline, sweep, sweeplog, values
-    from lightrocks.app.errors import ModelError, RunError
+    from lightrocks.app.errors import ModelError, RunError, SceneError
     from lightrocks.app.robots import choose
     from lightrocks.app.run import success_outcome
     from lightrocks.app.specs import run_spec
@@ -127,6 +128,9 @@ def cmd_sweep(args: argparse.Namespace) -> int:
             raise
     except ModelError as error:
         print(error)
+        return EXIT_FINDINGS
+    except SceneError as error:
+        complain(str(error))
         return EXIT_FINDINGS
     except (RunError, GenerationError) as error:
         raise UsageError(str(error)) from None
