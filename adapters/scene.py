@@ -24,6 +24,11 @@ class SceneFault(AdapterError):
     named with the scene, so that a run reports it as the scene's and not as its own."""
 
 
+def hook_fault(scene: str, hook: str, error: Exception) -> SceneFault:
+    """The fault of ``scene``'s ``hook`` that raised ``error``."""
+    return SceneFault(f"scene {scene!r}: {hook}() raised {type(error).__name__}: {error}")
+
+
 class FixtureTwin(Protocol):
     """The analytic fixture of a scene in the Pinocchio twin, which has no contact physics
     for moving parts: stepped every tick with the TCP pose (world frame) and whether the

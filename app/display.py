@@ -68,7 +68,8 @@ def live_status() -> Iterator[Callable[[dict[str, Any]], None]]:
 
 
 def show(name: str, result: RunResult) -> int:
-    """The summary of one run on stdout; 0 when it ended with the success outcome."""
+    """The summary of one run on stdout; 0 when it ended with the success outcome and no
+    hook of the scene raised."""
     from rich.console import Console
     from rich.table import Table
 
@@ -94,9 +95,11 @@ def show(name: str, result: RunResult) -> int:
         print(f"active: {printable(active)}")
     if result.fault:
         print(f"error: {printable(result.fault)}")
+    if result.scene_fault:
+        print(f"error: {printable(result.scene_fault)}")
     if result.video:
         print(printable(result.video))
-    return 0 if result.success else 1
+    return 0 if result.success and not result.scene_fault else 1
 
 
 @contextmanager
@@ -126,7 +129,8 @@ def progress_bar(name: str, runs: int) -> Iterator[Callable[[bool], None]]:
 
 def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
     """A row per seed, the success rate with its 95 % Wilson interval and the spread of the
-    simulated time on stdout; 0 when every run ended with the success outcome."""
+    simulated time on stdout; 0 when every run ended with the success outcome and no hook of
+    the scene raised."""
     from rich.console import Console
     from rich.table import Table
 
@@ -148,8 +152,9 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
         )
     Console(highlight=False, markup=False).print(table)
     for result in results:
-        if result.fault:
-            print(f"seed {result.seed}: error: {printable(result.fault)}")
+        for fault in (result.fault, result.scene_fault):
+            if fault:
+                print(f"seed {result.seed}: error: {printable(fault)}")
     count = sum(r.success for r in results)
     low, high = wilson(count, len(results))
     label = printable(wanted or "finished without error")
@@ -163,7 +168,7 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
         f"simulated time: {statistics.fmean(times):.3f} ± {spread:.3f} s, "
         f"min {min(times):.3f} s, max {max(times):.3f} s"
     )
-    return 0 if count == len(results) else 1
+    return 0 if count == len(results) and not any(r.scene_fault for r in results) else 1
 
 
 _RATE_COLUMNS = ("runs", "successes", "success_rate", "wilson_low", "wilson_high", "complete")

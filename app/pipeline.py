@@ -13,6 +13,7 @@ from typing import Any
 
 from lightrocks.app.adapter_factory import adapter_for, scene_of
 from lightrocks.app.errors import ModelError
+from lightrocks.app.ground_truth import ground_truth
 from lightrocks.app.loading import load_component
 from lightrocks.app.robots import RobotChoice, choose
 from lightrocks.app.run import RunResult, drive, success_outcome, summarize
@@ -67,10 +68,9 @@ def run(
         chart = drive(
             cls, dict(spec.params), device, spec.events, spec.trace, progress, watch, spec.header
         )
-        measure = getattr(device, "measurements", None)
-        measured = dict(measure()) if measure is not None else {}
+        truth = ground_truth(device, scene)
         if watch is not None:
-            watch.finish(measured)
+            watch.finish(truth.measurements)
     finally:
         if device is not None:
             device.close()
@@ -83,10 +83,11 @@ def run(
         succeeded,
         summary.time,
         summary.skills,
-        measured,
+        truth.measurements,
         summary.fault,
         () if chart.finished else _innermost(chart.active_paths),
         getattr(device, "video_written", ""),
+        truth.fault,
     )
 
 

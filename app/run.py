@@ -136,3 +136,5 @@ class RunResult:
     active orthogonal region)."""
     video: str = ""
     """Where the adapter's video went."""
+    scene_fault: str = ""
+    """What a hook of the scene raised (``measurements()``), if one did."""

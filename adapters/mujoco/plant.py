@@ -26,6 +26,7 @@ from lightrocks.adapters.robot_model import (
     TCP_SITE,
     TORQUE_SENSOR,
 )
+from lightrocks.adapters.scene import hook_fault
 from lightrocks.adapters.scene_registry import load_model
 from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.scene_registry import scene as registered
@@ -82,16 +83,21 @@ class MujocoPlant:
         index[k.M_JAC_SITE] = function_address("mj_jacSite")
         index[k.M_FULL_M] = function_address("mj_fullM")
         self._index = index
+        self._scene_name = scene
         self._scene = registered(scene)
         self._scene_step = self._scene.step
         self.arm: ArmState = MujocoArm(self.model, self.data, self._mj, self._index)
         self.arm.sensing[k.S_SENSOR_ROT : k.S_SENSOR_ROT + 9] = self.data.site_xmat[ft]
-        self._scene_step(self.model, self.data)
+        try:
+            self._scene_step(self.model, self.data)
+        except Exception as error:
+            raise hook_fault(scene, "step", error) from error
         mujoco.mj_step1(self.model, self.data)
 
     def step(self, tau: np.ndarray, grip: float) -> None:
         """Arm torques straight to the motors; each finger pushes with the grip force; then
-        the second half of this step, the scene's hook and the first half of the next step.
+        the second half of this step, the scene's hook (a raise is the scene's fault) and the
+        first half of the next step.
         The arm state rotates the wrist reading into world axes with the site pose the step
         computed it at (see adapters.kernels.mujoco_actuate).
 
@@ -104,7 +110,10 @@ class MujocoPlant:
             arm.tau[:] = tau
         k.mujoco_actuate(self._mj, arm.buffer, grip, self._index)
         mujoco.mj_step2(model, data)
-        self._scene_step(model, data)
+        try:  # costs nothing until the hook raises
+            self._scene_step(model, data)
+        except Exception as error:
+            raise hook_fault(self._scene_name, "step", error) from error
         mujoco.mj_step1(model, data)
 
     def wrist(self) -> np.ndarray:

@@ -137,7 +137,10 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     summaries = sweep.summarize(points, results, len(seeds))
     _write(output, sweep.result_files(cls.NAME, summaries, results))
     display.show_sweep(cls.NAME, wanted, sweep.point_rows(summaries), str(output))
-    return EXIT_OK
+    faults = list(dict.fromkeys(r.scene_fault for _, r in results if r.scene_fault))
+    for fault in faults:
+        complain(fault)
+    return EXIT_FINDINGS if faults else EXIT_OK
 
 
 def _run(

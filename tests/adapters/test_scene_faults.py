@@ -1,17 +1,20 @@
-"""A scene whose MJCF does not load is the scene's fault: a ``SceneFault`` naming the scene
-and its file in one line, not MuJoCo's raw multi-line message and not an error of the
-adapter or of the caller."""
+"""A scene whose MJCF does not load, or whose per-step hook raises, is the scene's fault: a
+``SceneFault`` naming the scene (and its file or hook) in one line, not MuJoCo's raw
+multi-line message and not an error of the adapter or of the model."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
+import mujoco
 import pytest
 
 from lightrocks.adapters import scene_registry
+from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.robot_model import MODELS_DIR
 from lightrocks.adapters.scene import Scene, SceneFault
 from lightrocks.adapters.scene_registry import UnknownScene, load_model
+from lightrocks.runtime.contract import Command
 
 EMPTY = (MODELS_DIR / "empty.xml").read_text()
 
@@ -76,3 +79,30 @@ def test_a_missing_mjcf_file_and_a_scene_without_the_robot_are_named(
 def test_an_unknown_scene_stays_the_caller_s_mistake() -> None:
     with pytest.raises(UnknownScene):
         load_model("atlantis")
+
+
+class Stepping(Scene):
+    """Raises from its per-step hook once the simulation has passed ``after`` seconds."""
+
+    after = 0.5
+
+    def step(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        if data.time > self.after:
+            raise KeyError("screw")
+
+
+def test_a_step_hook_that_raises_is_the_scene_s_fault(register) -> None:
+    register("stepping", Stepping(MODELS_DIR / "empty.xml"))
+    adapter = MujocoAdapter(scene="stepping")  # settles 0.3 s: before the hook raises
+    try:
+        hold = Command("gripper", "open", {}, [], 1.0)
+        with pytest.raises(SceneFault, match=r"^scene 'stepping': step\(\) raised KeyError: "):
+            adapter.execute([hold])
+    finally:
+        adapter.close()
+
+
+def test_a_step_hook_that_raises_while_the_cell_settles_stops_the_adapter(register) -> None:
+    register("stepping", type("Early", (Stepping,), {"after": -1.0})(MODELS_DIR / "empty.xml"))
+    with pytest.raises(SceneFault, match=r"^scene 'stepping': step\(\) raised KeyError: "):
+        MujocoAdapter(scene="stepping")

@@ -1,14 +1,20 @@
 """``lightrocks run`` and ``sweep`` on a broken scene.
 
 A scene whose MJCF does not load is its author's mistake, not a wrong use of the command:
-one line naming the scene and its file, exit 1, no traceback, nothing written.
+one line naming the scene and its file, exit 1, no traceback, nothing written. A scene hook
+that raises (``measurements()``, ``step``) is reported as the scene's, with exit 1, after
+the outcome and skill table of the run, which finished.
 """
 
 from __future__ import annotations
 
+import csv
+import json
 import logging
 from pathlib import Path
+from typing import Any
 
+import mujoco
 import pytest
 
 from lightrocks.adapters import scene_registry
@@ -74,6 +80,24 @@ import bench.Bench;
 """
 
 
+class Measured(Scene):
+    """The block's height as ground truth."""
+
+    def measurements(self, model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, Any]:
+        return {"block_height": float(data.body("block").xpos[2])}
+
+
+class Unmeasurable(Measured):
+    def measurements(self, model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, Any]:
+        return {"block_height": data.body("block").xpos[2], "tilt": {}["block_tilt"]}
+
+
+class Stepping(Measured):
+    def step(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        if data.time > 0.31:  # after the cell settled (0.3 s), while the gripper opens
+            raise KeyError("thread")
+
+
 @pytest.fixture
 def models(tmp_path: Path) -> Path:
     folder = tmp_path / "bench"
@@ -101,6 +125,10 @@ def run(models: Path, capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str
     out, err = capsys.readouterr()
     assert "Traceback" not in out + err
     return status, out, err, trace
+
+
+def records(trace: Path) -> list[dict[str, Any]]:
+    return [json.loads(line) for line in trace.read_text().splitlines()]
 
 
 def test_an_include_that_is_not_robot_xml_is_the_scene_s_error(
@@ -144,6 +172,33 @@ def test_an_unknown_scene_stays_a_usage_error(
     assert not trace.exists()
 
 
+def test_a_hook_that_raises_after_the_run_is_reported_after_the_run(
+    models: Path, part, capsys: pytest.CaptureFixture[str]
+) -> None:
+    part(Unmeasurable(EMPTY))
+    status, out, err, trace = run(models, capsys)
+    assert status == 1
+    assert err == ""
+    assert "Job/Work" in out  # the skill table
+    lines = out.splitlines()
+    assert lines[-2].startswith("outcome: finished after")
+    assert lines[-1] == "error: scene 'part': measurements() raised KeyError: 'block_tilt'"
+    last = records(trace)[-1]  # the trace is whole: the run finished before the hook ran
+    assert (last["kind"], last["outcome"]) == ("finished", "finished")
+
+
+def test_a_step_hook_that_raises_ends_the_run_with_an_error_named_for_the_scene(
+    models: Path, part, capsys: pytest.CaptureFixture[str]
+) -> None:
+    part(Stepping(EMPTY))
+    status, out, err, trace = run(models, capsys)
+    assert status == 1
+    assert err == ""
+    assert "outcome: error after" in out
+    assert "scene 'part': step() raised KeyError: 'thread'" in out
+    assert records(trace)[-1]["outcome"] == "error"
+
+
 @pytest.fixture
 def scheduler():
     """A cluster whose worker is a thread of this process: it sees the scenes registered
@@ -176,3 +231,17 @@ def test_a_sweep_on_a_scene_that_does_not_load_writes_nothing(
     assert status == 1
     assert f"lightrocks: error: scene 'part': {mjcf} does not load: " in err
     assert not (models / "out").exists()
+
+
+def test_a_sweep_names_a_hook_that_raised_and_keeps_the_run(
+    models: Path, part, scheduler: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    part(Unmeasurable(EMPTY))
+    status, err = sweep(models, scheduler, capsys)
+    assert status == 1
+    assert [line for line in err.splitlines() if "error" in line] == [
+        "lightrocks: error: scene 'part': measurements() raised KeyError: 'block_tilt'"
+    ]
+    with (models / "out" / "runs.csv").open() as stream:
+        [row] = csv.DictReader(stream)
+    assert row["outcome"] == "finished"
