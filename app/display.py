@@ -68,8 +68,8 @@ def live_status() -> Iterator[Callable[[dict[str, Any]], None]]:
 
 
 def show(name: str, result: RunResult) -> int:
-    """The summary of one run on stdout; 0 when it ended with the success outcome and no
-    hook of the scene raised."""
+    """The summary of one run on stdout, with the scene's judgement of its goal where it has
+    one; 0 when it ended with the success outcome and no hook of the scene raised."""
     from rich.console import Console
     from rich.table import Table
 
@@ -89,6 +89,8 @@ def show(name: str, result: RunResult) -> int:
         for key, value in result.measurements.items():
             table.add_row(measurement_label(key), format_measurement(key, value))
         console.print(table)
+    if result.goal is not None:
+        print(f"goal: {'met' if result.goal else 'not met'} (the scene's ground truth)")
     print(f"outcome: {outcome} after {result.time:.3f} s")
     if result.active:
         active = " | ".join(path.replace("/", " / ") for path in result.active)
@@ -128,25 +130,31 @@ def progress_bar(name: str, runs: int) -> Iterator[Callable[[bool], None]]:
 
 
 def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
-    """A row per seed, the success rate with its 95 % Wilson interval and the spread of the
+    """A row per seed, the success rate with its 95 % Wilson interval (and how many runs the
+    scene's ground truth shows at the goal, where it judges one) and the spread of the
     simulated time on stdout; 0 when every run ended with the success outcome and no hook of
     the scene raised."""
     from rich.console import Console
     from rich.table import Table
 
     keys = list(dict.fromkeys(k for r in results for k in key_measurements(r.measurements)))
+    judged = any(r.goal is not None for r in results)
     table = Table(title=f"{printable(name)}: {len(results)} runs", title_justify="left")
     table.add_column("seed", justify="right")
     table.add_column("outcome")
+    if judged:
+        table.add_column("goal")
     table.add_column("time [s]", justify="right")
     for key in keys:
         table.add_column(measurement_label(key), justify="right")
     for result in results:
         measured = result.measurements
         cells = [format_measurement(k, measured[k]) if k in measured else "" for k in keys]
+        goal = [_yes_no(result.goal)] if judged else []
         table.add_row(
             str(result.seed),
             printable(result.outcome or "not finished"),
+            *goal,
             f"{result.time:.3f}",
             *cells,
         )
@@ -158,10 +166,14 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
     count = sum(r.success for r in results)
     low, high = wilson(count, len(results))
     label = printable(wanted or "finished without error")
-    print(
+    rate = (
         f"success ({label}): {count}/{len(results)} = {count / len(results):.0%}, "
         f"95% Wilson interval {low:.0%}–{high:.0%}"
     )
+    if judged:
+        met = sum(r.goal is True for r in results)
+        rate += f"; goal met (the scene's ground truth): {met}/{len(results)}"
+    print(rate)
     times = [r.time for r in results]
     spread = statistics.stdev(times) if len(times) > 1 else 0.0
     print(
@@ -169,6 +181,10 @@ def show_seeds(name: str, wanted: str | None, results: list[RunResult]) -> int:
         f"min {min(times):.3f} s, max {max(times):.3f} s"
     )
     return 0 if count == len(results) and not any(r.scene_fault for r in results) else 1
+
+
+def _yes_no(value: bool | None) -> str:
+    return "" if value is None else "yes" if value else "no"
 
 
 _RATE_COLUMNS = ("runs", "successes", "success_rate", "wilson_low", "wilson_high", "complete")

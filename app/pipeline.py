@@ -56,8 +56,8 @@ def run(
     watch: Any = None,
 ) -> RunResult:
     """One run; ``cls`` is the loaded class of ``spec.model`` where the caller has it. The
-    measurements are read before the adapter is closed, because closing ends its
-    simulation."""
+    measurements are read, and judged by the scene's ``goal_met``, before the adapter is
+    closed, because closing ends its simulation."""
     cls = cls or load(spec.model, spec.search_path, spec.robot)
     wanted = success_outcome(cls, spec.success)
     scene = scene_of(cls)
@@ -87,6 +87,7 @@ def run(
         summary.fault,
         () if chart.finished else _innermost(chart.active_paths),
         getattr(device, "video_written", ""),
+        truth.goal,
         truth.fault,
     )
 

@@ -136,5 +136,9 @@ class RunResult:
     active orthogonal region)."""
     video: str = ""
     """Where the adapter's video went."""
+    goal: bool | None = None
+    """Whether the scene's ground truth shows its goal met (``Scene.goal_met`` on the
+    measurements); ``None`` without adapter, scene or goal. Beside ``success``, which only
+    says whether the chart ended with the success outcome."""
     scene_fault: str = ""
-    """What a hook of the scene raised (``measurements()``), if one did."""
+    """What a hook of the scene raised (``measurements()``, ``goal_met``), if one did."""

@@ -211,7 +211,8 @@ def point_rows(summaries: Sequence[PointSummary]) -> list[dict[str, Any]]:
 
 
 def run_rows(results: Sequence[tuple[GridPoint, RunResult]]) -> list[dict[str, Any]]:
-    """One row per run, so that nothing of the sweep is lost beyond the summary."""
+    """One row per run, so that nothing of the sweep is lost beyond the summary; ``success``
+    is the outcome's, ``goal_met`` the scene's ground truth (empty where it judges none)."""
     return [
         {
             **dict(p.split("=", 1) for p in point.params),
@@ -219,6 +220,7 @@ def run_rows(results: Sequence[tuple[GridPoint, RunResult]]) -> list[dict[str, A
             "seed": result.seed,
             "outcome": result.outcome or "not finished",
             "success": result.success,
+            "goal_met": result.goal,
             "time_s": result.time,
             "fault": result.fault,
         }

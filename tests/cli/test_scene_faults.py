@@ -1,9 +1,10 @@
-"""``lightrocks run`` and ``sweep`` on a broken scene.
+"""``lightrocks run`` on a broken scene and the scene's judgement of the goal.
 
 A scene whose MJCF does not load is its author's mistake, not a wrong use of the command:
 one line naming the scene and its file, exit 1, no traceback, nothing written. A scene hook
-that raises (``measurements()``, ``step``) is reported as the scene's, with exit 1, after
-the outcome and skill table of the run, which finished.
+that raises (``measurements()``, ``goal_met``, ``step``) is reported as the scene's, with
+exit 1, after the outcome and skill table of the run, which finished. A scene that states a
+goal has it judged on the ground truth beside the outcome; other runs show no goal.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import csv
 import json
 import logging
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -80,19 +82,27 @@ import bench.Bench;
 """
 
 
-class Measured(Scene):
-    """The block's height as ground truth."""
+class Judged(Scene):
+    """The block's height as ground truth; the goal: it is still on the table."""
 
     def measurements(self, model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, Any]:
         return {"block_height": float(data.body("block").xpos[2])}
 
+    def goal_met(self, values: Mapping[str, Any]) -> bool:
+        return values["block_height"] > 0.1
 
-class Unmeasurable(Measured):
+
+class Unmeasurable(Judged):
     def measurements(self, model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, Any]:
         return {"block_height": data.body("block").xpos[2], "tilt": {}["block_tilt"]}
 
 
-class Stepping(Measured):
+class Unjudged(Judged):
+    def goal_met(self, values: Mapping[str, Any]) -> bool:
+        return values["block_placed"]
+
+
+class Stepping(Judged):
     def step(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         if data.time > 0.31:  # after the cell settled (0.3 s), while the gripper opens
             raise KeyError("thread")
@@ -172,17 +182,31 @@ def test_an_unknown_scene_stays_a_usage_error(
     assert not trace.exists()
 
 
+@pytest.mark.parametrize(
+    ("scene", "message", "measured"),
+    [
+        (Unmeasurable, "measurements() raised KeyError: 'block_tilt'", False),
+        (Unjudged, "goal_met() raised KeyError: 'block_placed'", True),
+    ],
+)
 def test_a_hook_that_raises_after_the_run_is_reported_after_the_run(
-    models: Path, part, capsys: pytest.CaptureFixture[str]
+    models: Path,
+    part,
+    capsys: pytest.CaptureFixture[str],
+    scene: type[Scene],
+    message: str,
+    measured: bool,
 ) -> None:
-    part(Unmeasurable(EMPTY))
+    part(scene(EMPTY))
     status, out, err, trace = run(models, capsys)
     assert status == 1
     assert err == ""
     assert "Job/Work" in out  # the skill table
+    assert ("block height" in out) is measured
+    assert "goal:" not in out
     lines = out.splitlines()
     assert lines[-2].startswith("outcome: finished after")
-    assert lines[-1] == "error: scene 'part': measurements() raised KeyError: 'block_tilt'"
+    assert lines[-1] == f"error: scene 'part': {message}"
     last = records(trace)[-1]  # the trace is whole: the run finished before the hook ran
     assert (last["kind"], last["outcome"]) == ("finished", "finished")
 
@@ -197,6 +221,35 @@ def test_a_step_hook_that_raises_ends_the_run_with_an_error_named_for_the_scene(
     assert "outcome: error after" in out
     assert "scene 'part': step() raised KeyError: 'thread'" in out
     assert records(trace)[-1]["outcome"] == "error"
+
+
+class Unreached(Judged):
+    def goal_met(self, values: Mapping[str, Any]) -> bool:
+        return values["block_height"] > 0.2
+
+
+@pytest.mark.parametrize(("scene", "goal"), [(Judged, "met"), (Unreached, "not met")])
+def test_the_scene_s_goal_is_shown_beside_the_outcome_which_alone_decides_the_exit(
+    models: Path, part, capsys: pytest.CaptureFixture[str], scene: type[Scene], goal: str
+) -> None:
+    part(scene(EMPTY))
+    status, out, _, _ = run(models, capsys)
+    assert status == 0
+    *_, judged, outcome = out.splitlines()
+    assert judged == f"goal: {goal} (the scene's ground truth)"
+    assert outcome.startswith("outcome: finished after")
+
+
+def test_a_scene_without_a_goal_and_a_run_without_adapter_show_none(
+    models: Path, part, capsys: pytest.CaptureFixture[str]
+) -> None:
+    part(Scene(EMPTY))
+    status, out, _, _ = run(models, capsys)
+    assert status == 0
+    assert "goal" not in out
+    turnstile = ROOT / "examples" / "plain" / "Turnstile.lr"
+    main(["run", str(turnstile), "--events", "coin,push"])
+    assert "goal" not in capsys.readouterr().out
 
 
 @pytest.fixture
@@ -233,15 +286,25 @@ def test_a_sweep_on_a_scene_that_does_not_load_writes_nothing(
     assert not (models / "out").exists()
 
 
-def test_a_sweep_names_a_hook_that_raised_and_keeps_the_run(
-    models: Path, part, scheduler: str, capsys: pytest.CaptureFixture[str]
+@pytest.mark.parametrize(
+    ("scene", "goal", "error"),
+    [(Judged, "True", ""), (Unmeasurable, "", "measurements() raised KeyError: 'block_tilt'")],
+)
+def test_a_sweep_keeps_the_goal_per_run_and_names_a_hook_that_raised(
+    models: Path,
+    part,
+    scheduler: str,
+    capsys: pytest.CaptureFixture[str],
+    scene: type[Scene],
+    goal: str,
+    error: str,
 ) -> None:
-    part(Unmeasurable(EMPTY))
+    part(scene(EMPTY))
     status, err = sweep(models, scheduler, capsys)
-    assert status == 1
-    assert [line for line in err.splitlines() if "error" in line] == [
-        "lightrocks: error: scene 'part': measurements() raised KeyError: 'block_tilt'"
-    ]
+    assert status == (1 if error else 0)
+    assert [line for line in err.splitlines() if "error" in line] == (
+        [f"lightrocks: error: scene 'part': {error}"] if error else []
+    )
     with (models / "out" / "runs.csv").open() as stream:
         [row] = csv.DictReader(stream)
-    assert row["outcome"] == "finished"
+    assert (row["success"], row["goal_met"]) == ("True", goal)
