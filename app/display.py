@@ -21,6 +21,8 @@ _SCALES = {
     "_x": (1e3, "mm", 1),
     "_y": (1e3, "mm", 1),
     "_z": (1e3, "mm", 1),
+    "_offset": (1e3, "mm", 1),
+    "_distance": (1e3, "mm", 1),
     "_torque": (1.0, "Nm", 3),
 }
 """Measurement key suffix -> factor from SI, unit, decimals."""

@@ -110,6 +110,8 @@ def test_measurements_are_readable() -> None:
     assert format_measurement("terminals_latched", 3.0) == "3"
     assert format_measurement("screw_x", 0.5501) == "550.1 mm"
     assert format_measurement("screw_tilt", 0.0349) == "2.0 deg"
+    assert format_measurement("ring_offset", 0.000102503) == "0.1 mm"
+    assert format_measurement("peg_distance", 0.0123) == "12.3 mm"
 
 
 @pytest.mark.parametrize(
