@@ -137,3 +137,45 @@ def test_regions_history_choice_and_time_events_verify(text: str, tmp_path: Path
     (tmp_path / "p" / f"{name}.lr").write_text(text, encoding="utf-8")
     result = verify([tmp_path])
     assert [str(d) for d in result.diagnostics] == []
+
+
+SPIRAL_CELL = """\
+package p;
+
+cell Cell {
+  object hole {
+    Integer steps = 0;
+    Length radius = 1.25 mm;
+  }
+}
+"""
+
+SPIRAL = """\
+package p;
+
+import p.Cell;
+
+statechart Spiral {
+  events { arrived; }
+  initial state Step;
+  final state Done;
+  Step -> Step [hole.radius < 16 mm && hole.steps < 150] arrived / {
+    hole.steps = hole.steps + 1;
+    hole.radius = hole.radius + 2.5 mm * (2.5 mm / hole.radius) / 6.2832;
+  };
+  Step -> Done [hole.radius >= 16 mm || hole.steps >= 150] arrived;
+}
+"""
+
+
+def test_a_value_whose_digits_double_at_every_step_becomes_unknown(tmp_path: Path) -> None:
+    """``radius + c / radius`` (a hole search's spiral) doubles the digits of the tracked
+    fraction at every step: past a few dozen digits the radius is unknown, and the counter
+    still bounds the loop. Tracked on, it failed with an internal error after a dozen steps
+    (Python's limit on the digits of an int)."""
+    (tmp_path / "p").mkdir()
+    (tmp_path / "p" / "Cell.lrd").write_text(SPIRAL_CELL, encoding="utf-8")
+    (tmp_path / "p" / "Spiral.lr").write_text(SPIRAL, encoding="utf-8")
+    result = verify([tmp_path])
+    assert [str(d) for d in result.diagnostics] == []
+    assert not result.failed

@@ -2,9 +2,10 @@
 
 Integer, Real and Boolean attributes of scene objects (and parameters) are tracked while
 their value is known: a constant default, a constant assigned, a counter incremented. A value
-computed from a sensor, or one that outgrows :data:`LIMIT`, becomes unknown: any value. A
-guard is then decided by the solver with the known values put in and the unknown ones free,
-so each branch the real system could take is a branch here (a sound over-approximation).
+computed from a sensor, or one that outgrows :data:`LIMIT` or :data:`DIGITS`, becomes
+unknown: any value. A guard is then decided by the solver with the known values put in and the
+unknown ones free, so each branch the real system could take is a branch here (a sound
+over-approximation).
 """
 
 from __future__ import annotations
@@ -23,6 +24,9 @@ from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import fold
 
 LIMIT = 10**6
+DIGITS = 40
+"""A rational whose numerator or denominator has more digits becomes unknown as well: a
+recurrence such as ``r = r + c / r`` doubles them at every step."""
 Value = int | tuple[int, int] | bool
 """A Boolean, an Integer, or a rational as (numerator, denominator): hashed fast."""
 Store = tuple[tuple[str, Value], ...]
@@ -176,9 +180,13 @@ def _numeral(term: z3.ExprRef) -> Value | None:
     if z3.is_true(term) or z3.is_false(term):
         return z3.is_true(term)
     if z3.is_int_value(term):
-        return term.as_long()
+        digits = term.as_string()
+        return int(digits) if len(digits) <= DIGITS else None
     if z3.is_rational_value(term):
-        return _rational(Fraction(term.numerator_as_long(), term.denominator_as_long()))
+        numerator, denominator = term.numerator().as_string(), term.denominator().as_string()
+        if max(len(numerator), len(denominator)) > DIGITS:
+            return None
+        return _rational(Fraction(int(numerator), int(denominator)))
     return None
 
 
