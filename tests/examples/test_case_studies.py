@@ -160,18 +160,6 @@ def test_the_hole_search_spirals_out_to_a_hole_far_off(tmp_path: Path) -> None:
     assert screwed_home(result), result
 
 
-def test_a_search_step_held_back_by_the_hole_pushes_on_and_tugs(tmp_path: Path) -> None:
-    """Seed 81034 at 3 mm / 3 deg: the tip lands on the hole's edge and hooks into its mouth
-    on the first steps of the search without sinking the 0.3 mm a drop needs; the step cannot
-    reach its point. Pushing on and tugging finds the thread caught."""
-    trace = tmp_path / "run.jsonl"
-    result = run_model(SCREW_TASK, [], [], "mujoco", seed=81034, noise=NOISE_3, trace=trace)
-    assert outcomes(trace, "ScrewTask/Insert/Step")[-1] == "timeout"
-    assert outcomes(trace, "ScrewTask/Insert/Check") == ["held"]
-    assert outcomes(trace, "ScrewTask/Insert") == ["caught"]
-    assert screwed_home(result), result
-
-
 def test_a_tip_dropped_on_the_hole_edge_is_pushed_in(tmp_path: Path) -> None:
     """Seed 81240 at 2 mm / 2 deg: the tip drops 1.3 mm off the hole axis, on the mouth's
     edge, outside the thread's catch. The push after the drop slides it in (it came up free,
