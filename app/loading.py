@@ -88,9 +88,10 @@ def load_component(
 ) -> type:
     """Check the model, generate it (once per content) and import the class of its chart;
     with ``robot``, with the robot in the cell's robot slot."""
-    context = check([model], list(search_path))
     rebound = rebinding(model, search_path, robot) if robot is not None else None
-    if rebound is not None:
+    if rebound is None:
+        context = check([model], list(search_path))
+    else:
         context = check_rebound(model, search_path, rebound)
     if context.diagnostics.has_errors:
         found = report.text(context.diagnostics.items)
