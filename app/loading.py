@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import sys
+import threading
 from collections.abc import Sequence
 from pathlib import Path
 from types import ModuleType
@@ -26,6 +27,10 @@ from lightrocks.metamodel import ast
 from lightrocks.workbench import report
 from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.generators import GenerationRequest, run_generator
+
+# A package is in sys.modules while its modules are still being executed; threads that load
+# models at once (a pool of runs, a server) wait here rather than see it half-imported.
+_IMPORTING = threading.Lock()
 
 
 def generator_inputs(
@@ -45,12 +50,13 @@ def generated_package(
     """Generate (once per input) and import the package of every loaded statechart."""
     key = cache.cache_key(GENERATOR.name, generator_inputs(context, files, rebound))
     name = f"lightrocks_{key}"
-    if name not in sys.modules:
-        folder = cache.entry(
-            root, key, lambda: run_generator(GENERATOR, GenerationRequest(context, files))
-        )
-        _import_all(name, folder)
-    return sys.modules[name]
+    with _IMPORTING:
+        if name not in sys.modules:
+            folder = cache.entry(
+                root, key, lambda: run_generator(GENERATOR, GenerationRequest(context, files))
+            )
+            _import_all(name, folder)
+        return sys.modules[name]
 
 
 def _import_all(name: str, folder: Path) -> None:

@@ -162,3 +162,22 @@ def test_processes_building_the_same_entry_at_once_all_get_a_good_one(tmp_path: 
     assert found == [root / ("k" * 32)] * builders
     assert cache.verified(root / ("k" * 32))
     assert [p.name for p in root.iterdir()] == ["k" * 32]  # no staging folder left
+
+
+def test_threads_loading_one_model_at_once_never_see_it_half_imported(tmp_path, model):
+    root, loaders = tmp_path / "cache", 8
+    context = check([model])
+    for _ in range(5):  # the import races the others' lookups; a few rounds show a lost race
+        for name in [m for m in sys.modules if m.startswith("lightrocks_")]:
+            del sys.modules[name]
+        together = threading.Barrier(loaders)
+
+        def load_at_once(_: int, together: threading.Barrier = together) -> type:
+            together.wait(DEADLINE)
+            return component_class(generated_package(context, [model], root), "t.Gate")
+
+        classes = within(
+            lambda: list(ThreadPoolExecutor(loaders).map(load_at_once, range(loaders)))
+        )
+        assert len(set(classes)) == 1
+        assert runs(classes[0])
