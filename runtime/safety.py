@@ -1,7 +1,7 @@
 """Safe ranges enforced where a value leaves the runtime for a device: a command argument only
 known at run time (a run parameter, a computed value) outside the range its device declares
 is refused before anything moves. Generated classes carry the ranges as data, so every way of
-running them (command line, ``run_once``, ``--seeds``, plain Python) is held to them.
+running them (command line, ``spec_for``, ``--seeds``, plain Python) is held to them.
 
 This is the one implementation of the check and its message, here because the runtime may
 import nothing of ours: the language's checks of constant values (languages/domain/ranges.py)
