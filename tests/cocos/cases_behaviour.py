@@ -3,7 +3,7 @@ judged by the SMT solver over the declared ranges of sensors and attributes."""
 
 from __future__ import annotations
 
-from cocos.cases import BASE, CELL, DEVICES, JOB, MOVE, PICK, Case, replace
+from cocos.models import BASE, CELL, DEVICES, JOB, MOVE, PICK, Case, replace
 
 RANGED = replace(
     replace(DEVICES, "sensor Force force;", "sensor Force force in 0 N .. 100 N;"),

@@ -4,7 +4,7 @@ reach a command through parameters."""
 
 from __future__ import annotations
 
-from cocos.cases import CELL, DEVICES, MOVE, PICK, Case, replace
+from cocos.models import CELL, DEVICES, MOVE, PICK, Case, replace
 
 FORCED_MOVE = replace(
     replace(MOVE, "Length x = 10 mm;", "Length x = 10 mm; Force f = 10 N;"),

@@ -4,7 +4,7 @@
 
 from __future__ import annotations
 
-from cocos.cases import Case, replace
+from cocos.models import Case, replace
 
 DOOR = """\
 package sc;

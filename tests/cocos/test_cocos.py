@@ -1,7 +1,7 @@
 """Every CoCo code has a model that passes and a model that fails at the expected position.
 
-The models live in :mod:`tests.cocos.cases`; each is written to a fresh temporary model-path
-root and checked in-process with :func:`workbench.check.check`.
+The cases are gathered in :mod:`tests.cocos.cases`; each is written to a fresh temporary
+model-path root and checked in-process with :func:`workbench.check.check`.
 """
 
 from __future__ import annotations
@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from cocos.cases import CASES, Case, materialize
+from cocos.cases import CASES
+from cocos.models import Case, materialize
 from lightrocks.workbench.check import all_cocos, check
 from lightrocks.workbench.diagnostics import Diagnostic
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 import lightrocks.workbench.check as checking
-from cocos.cases import BASE, materialize
+from cocos.models import BASE, materialize
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench.check import check
 from lightrocks.workbench.cocos import coco

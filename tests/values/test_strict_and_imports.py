@@ -5,7 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from cocos.cases import BASE, CASES, PICK, materialize, replace
+from cocos.cases import CASES
+from cocos.models import BASE, PICK, materialize, replace
 
 from lightrocks.app.cli import main
 
