@@ -11,7 +11,7 @@ import networkx as nx
 
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES, Region, StateInfo
-from lightrocks.languages.lightrocks.regions import own_regions
+from lightrocks.languages.lightrocks.regions import own_regions, region_file
 from lightrocks.metamodel import ast
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity, did_you_mean
@@ -81,7 +81,7 @@ def states_reachable(context: object) -> Iterator[Finding]:
         for entry in entries:
             reached |= nx.descendants(graph, entry)
         for name, info in region.states.items():
-            if name not in reached and info.state.position.file == _file(region):
+            if name not in reached and info.state.position.file == region_file(region):
                 yield (info.state.position, f"state '{name}' is unreachable", "")
 
 
@@ -287,7 +287,3 @@ def _is_builtin(region: Region, transition: ast.Transition) -> bool:
     return transition.stimulus in BUILTIN_OUTCOMES and (
         source is None or source.outcomes is not None
     )
-
-
-def _file(region: Region) -> str:
-    return region.loaded.unit.package_position.file

@@ -10,8 +10,8 @@ from collections.abc import Iterator
 
 from lightrocks.languages.domain.ranges import Range
 from lightrocks.languages.lightrocks.analysis import Analysis, analysis
-from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.languages.lightrocks.ranges import Flows
+from lightrocks.languages.lightrocks.regions import own_regions, region_file
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import seconds
 from lightrocks.workbench.cocos import coco
@@ -86,7 +86,7 @@ def action_can_end(context: object) -> Iterator[Finding]:
 
 @coco("LR0504", Severity.WARNING, "a condition after the stimulus follows an action")
 def guard_in_place(context: object) -> Iterator[Finding]:
-    for _, region in _own_regions(analysis(context)):
+    for _, region in own_regions(analysis(context)):
         for transition in region.transitions:
             if transition.postcondition is not None and transition.action is None:
                 yield (
@@ -108,9 +108,9 @@ def guard_in_place(context: object) -> Iterator[Finding]:
 def safe_through_parameters(context: object) -> Iterator[Finding]:
     a = analysis(context)
     flows = Flows(a.typing)
-    for component, region in _own_regions(a):
+    for component, region in own_regions(a):
         for parameter in region.parameters.values():
-            if parameter.default is not None and parameter.position.file == _file(region):
+            if parameter.default is not None and parameter.position.file == region_file(region):
                 for safe in flows.of(component).get(parameter.name, ()):
                     yield from _breach(parameter.default, safe, f"default of '{parameter.name}'")
         for called, name, value in flows.bindings(region):
@@ -122,17 +122,6 @@ def _breach(value: ast.Expression, safe: Range, what: str) -> Iterator[Finding]:
     breach = safe.breach(value)
     if breach is not None:
         yield value.position, f"{what} reaches {breach}", ""
-
-
-def _own_regions(a: Analysis) -> Iterator[tuple[Component, Region]]:
-    for component in a.models.components:
-        for region in component.region.regions():
-            if region.loaded is component.loaded:
-                yield component, region
-
-
-def _file(region: Region) -> str:
-    return region.loaded.unit.package_position.file
 
 
 SAFETY_COCOS = (

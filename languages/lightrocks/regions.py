@@ -19,6 +19,11 @@ def own_regions(a: Analysis) -> Iterator[tuple[Component, Region]]:
                 yield component, region
 
 
+def region_file(region: Region) -> str:
+    """The file a region is written in."""
+    return region.loaded.unit.package_position.file
+
+
 def source_elements(region: Region) -> tuple:
     """The elements as written (before extension merged them by name)."""
     unit = region.loaded.unit
