@@ -79,11 +79,16 @@ class Pou:
 
 
 def tokenize(text: str) -> list[Token]:
+    """The words of ``text`` without comments, each with its line; lines are counted from
+    the previous token on, so long units cost linear time."""
     tokens = []
+    line, counted = 1, 0
     for match in TOKEN.finditer(text):
+        line += text.count("\n", counted, match.start())
+        counted = match.start()
         word = match.group()
         if not word.startswith(("(*", "//")):
-            tokens.append(Token(word, text.count("\n", 0, match.start()) + 1))
+            tokens.append(Token(word, line))
     return tokens
 
 
