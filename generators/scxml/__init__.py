@@ -8,7 +8,8 @@ SCXML back (:mod:`generators.scxml.reader`).
 from __future__ import annotations
 
 from lightrocks.generators.outputs import chart_stems, distinct
-from lightrocks.generators.scxml.writer import Document, Refusal, Writer
+from lightrocks.generators.scxml.chart_tree import Refusal
+from lightrocks.generators.scxml.writer import Document, Writer
 from lightrocks.generators.selection import selected
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.workbench.generators import GenerationError, GenerationRequest

@@ -20,8 +20,9 @@ from statecharts.random_charts import random_chart
 from interchange.canonical import canonical
 from interchange.conftest import generated
 from interchange.scxml_judge import run_both, same
-from lightrocks.generators.scxml.reader import Reader, convert_scxml_to_lr, parse_xml
+from lightrocks.generators.scxml.reader import Reader, convert_scxml_to_lr
 from lightrocks.generators.scxml.writer import Document, Writer
+from lightrocks.generators.scxml.xml_tree import parse_xml
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.workbench import report

@@ -11,7 +11,9 @@ from pathlib import Path
 import pytest
 
 from interchange.scxml_judge import Machine, simulated
-from lightrocks.generators.scxml.writer import LR, SCXML, Refusal, Writer
+from lightrocks.generators.scxml.chart_tree import Refusal
+from lightrocks.generators.scxml.markup import LR, SCXML
+from lightrocks.generators.scxml.writer import Writer
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 
