@@ -8,7 +8,7 @@ the syntax tree of MontiCore keeps (brackets, literal texts), so they print back
 
 The Java parts are opaque to LightRocks: they are checked (types of guards and invariants),
 printed and drawn, and translated to LightRocks expressions and statements where LightRocks
-has the construct (:mod:`languages.umlp.interchange`); a generator never runs them.
+has the construct (:mod:`languages.umlp.java_to_lr`); a generator never runs them.
 """
 
 from __future__ import annotations

@@ -12,14 +12,10 @@ from lightrocks.app.loading import component_class, generated_package
 from lightrocks.languages.lightrocks.printer import print_statechart
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.languages.umlp import nodes as n
-from lightrocks.languages.umlp.interchange import (
-    convert_lr_to_sc,
-    convert_sc_to_lr,
-    java_string_literal,
-    java_string_value,
-    lr_to_sc,
-    sc_to_lr,
-)
+from lightrocks.languages.umlp.chart_to_lr import sc_to_lr
+from lightrocks.languages.umlp.chart_to_sc import lr_to_sc
+from lightrocks.languages.umlp.interchange import convert_lr_to_sc, convert_sc_to_lr
+from lightrocks.languages.umlp.literals import java_string_literal, java_string_value
 from lightrocks.languages.umlp.printer import print_sc
 from lightrocks.languages.umlp.syntax import parse_sc
 from lightrocks.metamodel import ast
