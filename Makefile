@@ -29,6 +29,7 @@ judges:
 bench: $(STAMP)
 	$(INSTALL) -e '.[dev,bench]'
 	$(BIN)/python benchmarks/bench_check.py
+	$(BIN)/python benchmarks/bench_generate.py
 	$(BIN)/python benchmarks/bench_runtime.py
 	$(BIN)/python benchmarks/bench_adapters.py
 	$(BIN)/python benchmarks/bench_case_studies.py
