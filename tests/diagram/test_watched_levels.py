@@ -50,7 +50,7 @@ def test_the_replay_serves_one_picture_per_level(recorded: Path, launch) -> None
         bundle = answer.read().decode()
     assert '"root": "din_rail_ahead.tasks.AssembleRailAhead"' in bundle
     keys = re.findall(r'"key": "([^"]+)"', bundle)
-    assert len(keys) == bundle.count('<svg class="level"') == 21
+    assert len(keys) == bundle.count('<svg class="level"') == 22
     assert {"din_rail.skills.SnapOnRail", "din_rail_ahead.tasks.PlugTerminalAhead/PressOn"} <= set(
         keys
     )

@@ -228,6 +228,35 @@ def test_a_slow_click_is_pressed_home_instead_of_backed_off(tmp_path: Path) -> N
     assert outcomes(trace, "AssembleRail/PlugTerminal2/PressOn") == ["latched"]
 
 
+def test_a_push_that_twists_the_wrist_steps_towards_the_centre_line(tmp_path: Path) -> None:
+    """Seed 130013 at 2 mm / 2 deg sets the first terminal down about 6 mm off the centre
+    line: the touch twists the wrist by 0.07 Nm, just below `offCentre`, and the push that
+    follows stands one latch on a lip, twisting the wrist ever more (0.9 Nm at 42 N) until it
+    slid off and was pressed home askew, 8 mm off the centre line. The push stops at `twist`,
+    the hand steps towards the centre line and touches again; every terminal latches."""
+    trace = tmp_path / "run.jsonl"
+    result = run_model(ASSEMBLE_RAIL, [], [], "mujoco", seed=130013, noise=NOISE, trace=trace)
+    assert all_latched(result), result
+    assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn/Push") == [
+        "twistedMinus",
+        "latched",
+    ]
+    assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn/StepPlus") == ["stepped"]
+
+
+def test_a_clicked_terminal_is_held_down_before_it_is_let_go(tmp_path: Path) -> None:
+    """Seed 132032 at 2 mm / 2 deg: the first terminal clicks tilted 0.6 deg in the fingers,
+    and the jolt of the click ends `Seat` at once. Let go then, it slid 1.8 mm across the
+    rail, out of the ground truth's 1.5 mm; pressed down firmly for `settle` it lies flat on
+    the lips and stays on the centre line."""
+    trace = tmp_path / "run.jsonl"
+    result = run_model(ASSEMBLE_RAIL, [], [], "mujoco", seed=132032, noise=NOISE, trace=trace)
+    assert all_latched(result), result
+    assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn/Press") == ["seated"]
+    assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn/Settle") == ["preempted"]
+    assert outcomes(trace, "AssembleRail/PlugTerminal1/PressOn") == ["latched"]
+
+
 def test_reordering_the_rail_tasks_changes_only_the_sequence_model(tmp_path: Path) -> None:
     examples = tmp_path / "examples"
     shutil.copytree(EXAMPLES, examples)

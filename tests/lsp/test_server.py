@@ -49,13 +49,13 @@ async def test_an_unhandled_timeout_is_fixed_as_a_sibling_handles_it(
         )
     )
     [edit] = fix.edit.changes[uri]
-    assert edit.range.start == cursor(text, "Press -> latched seated", "Press")
+    assert edit.range.start == cursor(text, "Press -> Settle seated", "Press")
     lines = text.split("\n")
     row, column = edit.range.start.line, edit.range.start.character
     lines[row] = lines[row][:column] + edit.new_text + lines[row][column:]
     await change(client, uri, 2, "\n".join(lines))
     assert not [d for d in client.diagnostics[uri] if d.code == "LR0209"]
-    assert "  Press -> GiveUp timeout;\n  Press -> latched seated" in "\n".join(lines)
+    assert "  Press -> GiveUp timeout;\n  Press -> Settle seated" in "\n".join(lines)
 
 
 @pytest.mark.asyncio

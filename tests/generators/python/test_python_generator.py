@@ -86,9 +86,10 @@ def test_screw_task_runs_to_success_on_the_dry_run(package):
 
 def test_assemble_rail_runs_to_success_on_the_dry_run(package):
     # the arm's motions end as on a real rail: Touch finds the lips, SnapOn hears the click
-    # (the force peaked, then fell) and Seat feels the housing sit on the lips
+    # (the force peaked, then fell), Seat feels the housing sit on the lips and Hold presses
+    # it down (the script ends Hold with its end condition, before the parent's time event)
     per_terminal = ["reached", "reached", "lifted", "reached", "reached"]
-    per_terminal += ["touched", "latched", "seated", "lifted"]
+    per_terminal += ["touched", "latched", "seated", "pressed", "lifted"]
     adapter = DryRunAdapter(
         outcomes={"robot.moveCartesian": per_terminal * 3},
         sensors={"robot.peakForce": 30.0},
