@@ -11,6 +11,7 @@ failed in CI.
 from __future__ import annotations
 
 import os
+import xml.etree.ElementTree as ET
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -23,6 +24,8 @@ from test_matiec_findings import _cases
 
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import GenerationRequest, load_generator
+
+TC6 = "{http://www.plcopen.org/xml/tc6_0201}"
 
 SOURCES = {
     "examples": ([EXAMPLES], [EXAMPLES]),
@@ -68,14 +71,40 @@ def test_every_project_loads_and_generates_iec_in_beremiz(judge, projects, tally
     assert len(clean) == len(projects) >= 20, [r for r in loaded if r not in clean]
 
 
+def _parts(project: Path) -> frozenset[bytes]:
+    """The project's data types and its POUs but the program, each as its XML text. The
+    program only instantiates the top function block; its shape is the same in every
+    project."""
+    root = ET.parse(project).getroot()
+    pous = [p for p in root.iter(f"{TC6}pou") if p.get("pouType") != "program"]
+    return frozenset(ET.tostring(part) for part in [*root.iter(f"{TC6}dataType"), *pous])
+
+
+def largest(projects: list[Path]) -> list[Path]:
+    """The projects whose parts are not all in another project: building these compiles
+    every data type and function block of every project (a skill's are all in its task)."""
+    parts = {project: _parts(project) for project in projects}
+    return [
+        project
+        for project in projects
+        if not any(
+            parts[project] < parts[other] or (parts[project] == parts[other] and other < project)
+            for other in projects
+        )
+    ]
+
+
 def test_every_project_builds_in_beremiz(judge, projects, tmp_path: Path, tally) -> None:
+    built_ones = largest(projects)
+    assert len(built_ones) >= 10, built_ones
     with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-        results = list(pool.map(lambda i: build(judge, projects[i], tmp_path / str(i)),
-                                range(len(projects))))  # fmt: skip
-    built = [p for p, (ok, _) in zip(projects, results, strict=True) if ok]
-    tally("Beremiz built {built}/{files} PLCopen projects headless", built=len(built),
-          files=len(projects))  # fmt: skip
+        results = list(pool.map(lambda i: build(judge, built_ones[i], tmp_path / str(i)),
+                                range(len(built_ones))))  # fmt: skip
+    built = [p for p, (ok, _) in zip(built_ones, results, strict=True) if ok]
+    tally("Beremiz built {built}/{files} PLCopen projects headless, which hold every POU of "
+          "{projects} projects", built=len(built), files=len(built_ones),
+          projects=len(projects))  # fmt: skip
     failed = {
-        p.name: said[-1500:] for p, (ok, said) in zip(projects, results, strict=True) if not ok
+        p.name: said[-1500:] for p, (ok, said) in zip(built_ones, results, strict=True) if not ok
     }
     assert not failed, failed
