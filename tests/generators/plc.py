@@ -77,10 +77,13 @@ def _compile(
     return done
 
 
-def gcc(home: Path, out: Path, driver: str, exe: Path) -> subprocess.CompletedProcess:
-    """Compile and link MatIEC's C with a driver (``main``) into ``exe``. MatIEC's C is
-    compiled once per folder, so that several drivers link against it cheaply."""
-    command = ["gcc", "-w", "-O0", "-I", str(home / "lib" / "C"), "-I", str(out)]
+def _gcc(home: Path, out: Path) -> list[str]:
+    return ["gcc", "-w", "-O0", "-I", str(home / "lib" / "C"), "-I", str(out)]
+
+
+def compile_c(home: Path, out: Path) -> subprocess.CompletedProcess | list[str]:
+    """Compile MatIEC's C in ``out`` once (an object beside each file): the objects, or the
+    failed compilation."""
     objects = []
     for source in sorted(out.glob("*.c")):
         if source.name in ("POUS.c", "driver.c"):
@@ -88,14 +91,25 @@ def gcc(home: Path, out: Path, driver: str, exe: Path) -> subprocess.CompletedPr
         compiled = source.with_suffix(".o")
         if not compiled.exists():
             done = subprocess.run(
-                [*command, "-c", str(source), "-o", str(compiled)],
+                [*_gcc(home, out), "-c", str(source), "-o", str(compiled)],
                 capture_output=True, text=True, timeout=300, check=False,
             )  # fmt: skip
             if done.returncode != 0:
                 return done
         objects.append(str(compiled))
-    (out / "driver.c").write_text(driver)
-    command += [str(out / "driver.c"), *objects, "-lm", "-o", str(exe)]
+    return objects
+
+
+def gcc(home: Path, out: Path, driver: str, exe: Path) -> subprocess.CompletedProcess:
+    """Compile and link MatIEC's C with a driver (``main``) into ``exe``. MatIEC's C is
+    compiled once per folder (:func:`compile_c`), so that several drivers link against it
+    cheaply; the driver is written beside ``exe``, so that programs in folders of their own
+    link against one compiled folder at once."""
+    objects = compile_c(home, out)
+    if isinstance(objects, subprocess.CompletedProcess):
+        return objects
+    (exe.parent / "driver.c").write_text(driver)
+    command = [*_gcc(home, out), str(exe.parent / "driver.c"), *objects, "-lm", "-o", str(exe)]
     return subprocess.run(command, capture_output=True, text=True, timeout=300, check=False)
 
 

@@ -18,6 +18,7 @@ from generation import EXAMPLES, generate
 from plc import (
     Scenario,
     comparable,
+    compile_c,
     driver_source,
     gcc,
     iec2c,
@@ -28,6 +29,7 @@ from plc import (
 from test_sfc_numbers import every_mix
 
 from lightrocks.generators.sfc_iec61131 import build_unit
+from lightrocks.generators.sfc_iec61131.ir import Unit
 from lightrocks.generators.sfc_iec61131.reserved import is_reserved, is_reserved_for_unit
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench.check import check
@@ -202,14 +204,21 @@ def test_integers_meeting_reals_compile_and_link(home: Path, tmp_path: Path, tal
     assert not failure
 
 
-def _steps_alike(home: Path, out: Path, scenario: Scenario) -> bool:
-    unit = _unit(scenario.model)
-    text = generate("sfc", [scenario.model], search=SEARCH)[f"{unit.top.name}.st"]
+def _compiled(home: Path, out: Path, model: Path) -> tuple[Unit, Path]:
+    """The unit of ``model`` and the folder of its compiled C, ready to link with drivers."""
+    unit = _unit(model)
     out.mkdir()
     source = out / "unit.st"
-    source.write_text(text)
-    assert iec2c(home, source, out / "c").returncode == 0, scenario.name
-    built = gcc(home, out / "c", driver_source(unit, scenario, 400_000), out / "run")
+    source.write_text(generate("sfc", [model], search=SEARCH)[f"{unit.top.name}.st"])
+    assert iec2c(home, source, out / "c").returncode == 0, model.name
+    objects = compile_c(home, out / "c")
+    assert isinstance(objects, list), objects.stderr
+    return unit, out / "c"
+
+
+def _steps_alike(home: Path, out: Path, scenario: Scenario, unit: Unit, c: Path) -> bool:
+    out.mkdir()
+    built = gcc(home, c, driver_source(unit, scenario, 400_000), out / "run")
     assert built.returncode == 0, built.stderr
     expected = comparable(python_trace(scenario, SEARCH), unit)
     assert expected, f"{scenario.name}: the dry run produced no comparable event"
@@ -218,11 +227,25 @@ def _steps_alike(home: Path, out: Path, scenario: Scenario) -> bool:
 
 def _differing(home: Path, folder: Path, scenarios: list, tally, what: str) -> list[str]:
     """The names of the scenarios whose compiled program steps unlike Python, run in
-    parallel; the count of those alike goes to the summary as ``what``."""
+    parallel; the count of those alike goes to the summary as ``what``. Each model is
+    compiled once, and linked with the driver of each of its scenarios."""
+    models = sorted({s.model for s in scenarios})
     with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        compiled = dict(
+            zip(
+                models,
+                pool.map(
+                    lambda i: _compiled(home, folder / f"unit{i}", models[i]), range(len(models))
+                ),
+                strict=True,
+            )
+        )
         alike = list(
             pool.map(
-                lambda i: _steps_alike(home, folder / str(i), scenarios[i]), range(len(scenarios))
+                lambda i: _steps_alike(
+                    home, folder / str(i), scenarios[i], *compiled[scenarios[i].model]
+                ),
+                range(len(scenarios)),
             )
         )
     differing = [s.name for s, same in zip(scenarios, alike, strict=True) if not same]
