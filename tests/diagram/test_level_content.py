@@ -77,7 +77,7 @@ def test_an_action_shows_its_command_and_its_end_conditions_as_exits(examples) -
     assert do.lines[0].startswith("do / robot.moveCartesian(goal = ")
     assert any("stiffness = stiffness" in line for line in do.lines)
     exits = {e.target: e.label for e in touch.edges if e.kind == "exit"}
-    assert exits["touched"] == "touched\n[robot.wrench.force.z > touchForce]"
+    assert exits["touched"] == "touched\n[robot.wrench.force.z >\ntouchForce]"  # 32 a line
     assert exits["#timeout"] == "timeout: after(10 s)"
     ends = [n for n in touch.nodes if n.kind == "end"]
     assert ends and all(not n.xlabel and not n.lines for n in ends)
