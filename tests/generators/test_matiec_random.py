@@ -41,9 +41,9 @@ from lightrocks.app.run import drive
 from lightrocks.workbench.generators import GenerationError
 
 CHARTS = 6
-SWEEP = 70
+SWEEP = 120
 TIED = 12
-TIED_SWEEP = 35
+TIED_SWEEP = 60
 SEQUENCES = 3
 SETTLING = f"+{round(TICK * 4000)}ms"  # every script ends letting the longest delay pass
 REFUSED = "the SFC target does not map"
