@@ -11,9 +11,8 @@ from __future__ import annotations
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
+from lightrocks.languages.lightrocks.model import COMPONENT_STEREOTYPES
 from lightrocks.metamodel import ast
-
-COMPONENT_STEREOTYPES = ("import", "extends", "task", "skill", "action")
 
 
 class Refusal(Exception):

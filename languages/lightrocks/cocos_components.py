@@ -9,16 +9,13 @@ from collections.abc import Iterator
 import networkx as nx
 
 from lightrocks.languages.lightrocks.analysis import analysis
-from lightrocks.languages.lightrocks.model import LAYERS, Region
+from lightrocks.languages.lightrocks.model import MAY_USE, STEREOTYPES, Region, may_use
 from lightrocks.languages.lightrocks.regions import own_regions
 from lightrocks.metamodel import ast
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity, did_you_mean
 
 Finding = tuple[ast.Position, str, str]
-
-KNOWN_STEREOTYPES = {*LAYERS, "import", "extends", "timeout", "scene"}
-MAY_USE = {"task": {"task", "skill"}, "skill": {"skill", "action"}, "action": set()}
 
 
 @coco("LR0201", Severity.ERROR, "a component has exactly one layer stereotype")
@@ -54,7 +51,7 @@ def layering(context: object) -> Iterator[Finding]:
             child = info.imported.layer if info.imported is not None else None
             if layer == "action":
                 yield (info.state.position, "an action has no child states", "")
-            elif child is not None and child not in MAY_USE[layer]:
+            elif child is not None and not may_use(layer, child):
                 yield (
                     info.state.position,
                     f"a {layer} cannot use the {child} '{info.imported.name}'",
@@ -110,9 +107,9 @@ def known_stereotypes(context: object) -> Iterator[Finding]:
         for info in region.states.values():
             stereotypes += info.state.stereotypes
         for stereotype in stereotypes:
-            if stereotype.name not in KNOWN_STEREOTYPES:
+            if stereotype.name not in STEREOTYPES:
                 yield (
                     stereotype.position,
                     f"unknown stereotype <<{stereotype.name}>>",
-                    did_you_mean(stereotype.name, KNOWN_STEREOTYPES),
+                    did_you_mean(stereotype.name, STEREOTYPES),
                 )

@@ -11,23 +11,18 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from lightrocks.languages.lightrocks.analysis import analysis
-from lightrocks.languages.lightrocks.model import LAYERS, Component
+from lightrocks.languages.lightrocks.model import (
+    REFERENCE_STEREOTYPES,
+    STEREOTYPES,
+    Component,
+    takes_effect,
+)
 from lightrocks.metamodel import ast
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity
 from lightrocks.workbench.workspace import Loaded, Workspace
 
 Finding = tuple[ast.Position, str, str]
-
-EFFECTIVE = {
-    "statechart": {*LAYERS, "extends", "timeout"},
-    "state": {"import", "extends"},
-    "device": {"timeout", "concurrent"},
-    "cell": {"scene"},
-}
-"""Where each known stereotype has an effect: ``timeout`` on a statechart is an action's
-command budget, and bounds a skill, task or plain statechart as a whole."""
-KNOWN = set().union(*EFFECTIVE.values()) | {"import", "scene"}
 
 
 @coco("LR0112", Severity.ERROR, "no name is provided by two wildcard imports")
@@ -68,7 +63,7 @@ def _wildcard_providers(workspace: Workspace, loaded: Loaded) -> dict[str, list]
 def _used_names(unit: object) -> Iterator[tuple[str, ast.Position]]:
     """Simple names a unit refers to: imported and extended statecharts, types."""
     for node in ast.walk(unit):
-        if isinstance(node, ast.Stereotype) and node.name in ("import", "extends"):
+        if isinstance(node, ast.Stereotype) and node.name in REFERENCE_STEREOTYPES:
             if node.value and "." not in node.value:
                 yield node.value, node.position
         elif isinstance(node, ast.Parameter | ast.Sensor | ast.CommandParameter | ast.Field):
@@ -113,25 +108,16 @@ def _misplaced(
     stereotypes: tuple[ast.Stereotype, ...], kind: str, component: Component | None = None
 ) -> Iterator[Finding]:
     for stereotype in stereotypes:
-        if stereotype.name not in KNOWN:
+        if stereotype.name not in STEREOTYPES:
             continue  # unknown stereotypes are LR0212's
-        if stereotype.name not in EFFECTIVE[kind]:
+        if not takes_effect(stereotype.name, kind):
             layer = component.layer if component is not None else None
             where = f"a {layer or kind}"
             yield (
                 stereotype.position,
                 f"<<{stereotype.name}>> has no effect on {where}",
-                _fix(stereotype.name),
+                STEREOTYPES[stereotype.name].belongs,
             )
-
-
-def _fix(name: str) -> str:
-    return {
-        "timeout": "a time budget belongs on a statechart or a device",
-        "scene": "a scene belongs on a cell",
-        "concurrent": "<<concurrent>> belongs on a device",
-        "import": "<<import>> belongs on a state",
-    }.get(name, "remove it")
 
 
 def _qualified(unit: ast.StatechartUnit) -> str:

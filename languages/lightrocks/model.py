@@ -5,6 +5,12 @@ start/end conditions, states, transitions and actions. ``<<extends>>`` merges th
 region under the derived one (same name or same source and stimulus overrides);
 ``<<import>>`` makes a state an instance of another component. Everything here is built
 once per check and shared by the CoCos and the generators.
+
+It is also the one place the language's derived facts are defined: the layers and which
+layer may use which, where each stereotype takes effect, the built-in outcomes, an action's
+command budget and the cell a statechart runs in. CoCos, generators, the studio and the
+language server ask it (``tests/languages/test_semantic_model.py`` fails on a second
+definition).
 """
 
 from __future__ import annotations
@@ -13,11 +19,94 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 from lightrocks.metamodel import ast
+from lightrocks.metamodel.units import seconds
+from lightrocks.runtime import DEFAULT_BUDGET
 from lightrocks.workbench.diagnostics import Diagnostics, did_you_mean
-from lightrocks.workbench.workspace import Loaded, Workspace
+from lightrocks.workbench.workspace import Loaded, Symbol, Workspace
+
+# -- the language's facts -------------------------------------------------------------------
 
 LAYERS = ("task", "skill", "action")
+"""The layer stereotypes of a component, highest first."""
+MAY_USE: dict[str, tuple[str, ...]] = {
+    "task": ("task", "skill"),
+    "skill": ("skill", "action"),
+    "action": (),
+}
+"""The layers a component of each layer may import as child states."""
 BUILTIN_OUTCOMES = ("error", "timeout", "preempted")
+"""Outcomes every child state can end with besides its own: a fault, a spent budget, a
+preemption."""
+REFERENCE_STEREOTYPES = ("import", "extends")
+"""The stereotypes whose value names another statechart."""
+COMPONENT_STEREOTYPES = (*LAYERS, *REFERENCE_STEREOTYPES)
+"""The stereotypes that make a statechart a LightRocks component rather than a plain one."""
+
+
+@dataclass(frozen=True)
+class StereotypeRule:
+    """Where a known stereotype takes effect (``statechart``, ``state``, ``device``,
+    ``cell``), and the hint when it stands anywhere else."""
+
+    places: frozenset[str]
+    belongs: str = "remove it"
+
+
+STEREOTYPES: dict[str, StereotypeRule] = {
+    **{layer: StereotypeRule(frozenset({"statechart"})) for layer in LAYERS},
+    "extends": StereotypeRule(frozenset({"statechart", "state"})),
+    "import": StereotypeRule(frozenset({"state"}), "<<import>> belongs on a state"),
+    "timeout": StereotypeRule(
+        frozenset({"statechart", "device"}), "a time budget belongs on a statechart or a device"
+    ),
+    "concurrent": StereotypeRule(frozenset({"device"}), "<<concurrent>> belongs on a device"),
+    "scene": StereotypeRule(frozenset({"cell"}), "a scene belongs on a cell"),
+}
+"""Every known stereotype: ``timeout`` on a statechart is an action's command budget, and
+bounds a skill, task or plain statechart as a whole."""
+
+
+def may_use(layer: str | None, child: str | None) -> bool:
+    """A component of ``layer`` may import one of ``child``; a plain statechart (no layer)
+    imports plain ones."""
+    if layer is None:
+        return child is None
+    return child in MAY_USE.get(layer, ())
+
+
+def takes_effect(stereotype: str, place: str) -> bool:
+    """``<<stereotype>>`` changes something where it is written on a ``place``."""
+    rule = STEREOTYPES.get(stereotype)
+    return rule is not None and place in rule.places
+
+
+@dataclass(frozen=True)
+class Budget:
+    """An action's command budget in seconds and the ``<<timeout>>`` it comes from (None:
+    the default); ``own`` when that is the action's (or the one it extends)."""
+
+    seconds: float
+    stereotype: ast.Stereotype | None = None
+    own: bool = False
+
+
+def visible_cells(workspace: Workspace, loaded: Loaded) -> list[Symbol]:
+    """The cells a file sees, in the order of its scope: their devices and objects are the
+    environment of its statecharts."""
+    return [s for s in workspace.scope(loaded).values() if isinstance(s.node, ast.Cell)]
+
+
+def running_cell(workspace: Workspace, loaded: Loaded) -> Symbol | None:
+    """The cell a file's statechart runs in: the first it sees by qualified name."""
+    return min(visible_cells(workspace, loaded), key=lambda s: s.qualified_name, default=None)
+
+
+def _duration(stereotype: ast.Stereotype | None) -> float | None:
+    """A ``<<timeout>>`` in seconds; None for none, or for one LR0501 refuses."""
+    return seconds(stereotype.value) if stereotype is not None else None
+
+
+# -- the resolved model ---------------------------------------------------------------------
 
 
 @dataclass
@@ -124,6 +213,18 @@ class Component:
         if found is None and self.base is not None:
             return self.base.budget
         return found
+
+    def command_budget(self, device: ast.Device | None) -> Budget:
+        """An action's command budget: its own ``<<timeout>>`` (or the one of the action it
+        extends), else its device's, else :data:`DEFAULT_BUDGET`."""
+        own = _duration(self.budget)
+        if own is not None:
+            return Budget(own, self.budget, own=True)
+        written = ast.stereotype(device.stereotypes, "timeout") if device is not None else None
+        found = _duration(written)
+        if found is not None:
+            return Budget(found, written)
+        return Budget(DEFAULT_BUDGET)
 
 
 class ModelSet:

@@ -10,15 +10,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from lightrocks.languages.lightrocks.model import COMPONENT_STEREOTYPES
 from lightrocks.languages.umlp import nodes as n
 from lightrocks.languages.umlp.literals import java_string_literal
 from lightrocks.languages.umlp.lr_to_java import java_expression, java_statement
 from lightrocks.languages.umlp.refusal import Findings
 from lightrocks.metamodel import ast
 from lightrocks.workbench.diagnostics import Diagnostic
-
-LAYERS = ("task", "skill", "action")
-COMPONENT_STEREOTYPES = ("import", "extends")
 
 
 class _ToUMLP:
@@ -94,7 +92,7 @@ class _ToUMLP:
     def stereotypes(self, stereotypes: Sequence[ast.Stereotype]) -> tuple[n.StereoValue, ...]:
         values = []
         for s in stereotypes:
-            if s.name in LAYERS or s.name in COMPONENT_STEREOTYPES:
+            if s.name in COMPONENT_STEREOTYPES:
                 self.findings.lacks(
                     s.position,
                     f"<<{s.name}>> makes a LightRocks component, not a plain statechart: "
