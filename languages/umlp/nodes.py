@@ -461,22 +461,3 @@ def states(elements: tuple[SCElement, ...] | None) -> list[SCState]:
             found.append(element)
             found += states(element.body)
     return found
-
-
-def java_parts(node: object) -> list[object]:
-    """Every Java expression and statement directly in a statechart element (not those of
-    nested states): the guard, event arguments, action and postcondition of a transition,
-    the ante block and invariant of a state, an action's body."""
-    match node:
-        case SCTransition() | SCInternTransition():
-            found: list[object] = [node.pre] if node.pre is not None else []
-            if node.event is not None and node.event.arguments:
-                found += node.event.arguments
-            if node.action is not None:
-                found += [p for p in (node.action.statement, node.action.post) if p is not None]
-            return found
-        case SCState():
-            return [*(node.ante or ()), *([node.invariant] if node.invariant is not None else [])]
-        case SCAction(body=body):
-            return [p for p in (body.statement, body.post) if p is not None]
-    return []
