@@ -26,16 +26,8 @@ from lightrocks.adapters.scene_registry import objects
 from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.sensing import WristSensor
 from lightrocks.adapters.video import VideoRecorder
-from lightrocks.runtime.contract import (
-    TIMEOUT,
-    AdapterError,
-    Command,
-    CommandResult,
-    StopCondition,
-    TickListener,
-    Vector3,
-    Wrench,
-)
+from lightrocks.runtime.contract import AdapterError, Command, Vector3, Wrench
+from lightrocks.runtime.control_loop import Started, TickingAdapter, always, nothing
 
 DEFAULT_DAMPING = (0.7,) * 6
 DEFAULT_JOINT_DAMPING = (0.7,) * ARM_DOF
@@ -282,12 +274,13 @@ _SENSORS = {
 }
 
 
-class SimulatedCell:
+class SimulatedCell(TickingAdapter):
     """``runtime.contract.Adapter`` for one cell (a robot arm, parallel gripper, camera) on a
     plant; the scene and the robot are registered names (adapters.scene_registry)."""
 
     PLANT: Callable[[str, str], Plant]
     """Builds the physics of a scene with a robot; each adapter names its own."""
+    PERIOD = DT
 
     def __init__(
         self,
@@ -328,7 +321,7 @@ class SimulatedCell:
         )
         self._start_command()
         for _ in range(round(SETTLE_TIME / DT)):
-            self._tick()
+            self.tick()
         self.tare()
         self.hold()
 
@@ -346,72 +339,35 @@ class SimulatedCell:
         }
         return SimpleNamespace(time=self.time, **devices)
 
-    def execute(
-        self, commands: Sequence[Command], on_tick: TickListener | None = None
-    ) -> list[CommandResult]:
-        """Start the commands in order and tick them in one loop, each until its own stop
-        condition or budget; the arm holds as soon as its command has ended."""
-        devices = [c.device for c in commands]
-        if len(set(devices)) < len(devices):
-            raise AdapterError(f"two commands at once for one device: {', '.join(devices)}")
-        for c in commands:
-            budget = c.budget
-            if not (isinstance(budget, int | float) and budget >= 0 and math.isfinite(budget)):
-                message = f"budget must be a finite number of seconds >= 0, got {budget!r}"
-                raise AdapterError(message)
+    # -- the control loop (runtime.control_loop) -------------------------------------------
+
+    def start(self, commands: Sequence[Command]) -> list[Started]:
+        """Check every command's arguments against the device signatures, then start them."""
         bound = [_bind(self._signatures, c.device, c.command, c.args) for c in commands]
-        started = [
-            getattr(self, f"_{c.device}_{c.command}")(**b)
+        return [
+            getattr(self, f"_{c.device}_{c.command}")(c, **b)
             for c, b in zip(commands, bound, strict=True)
         ]
-        ends = [self.time + c.budget - DT / 2 for c in commands]
-        results: list[CommandResult | None] = [None] * len(commands)
-        live = self._live
-        pending = [
-            (index, c, settled, value, _first_holding(c.stop), ends[index])
-            for index, (c, (settled, value)) in enumerate(zip(commands, started, strict=True))
-        ]
-        remaining = len(pending)
-        running = commands[0]
-        tick = self._tick
-        try:
-            while remaining:
-                tick()
-                now = self.time
-                tell = None  # on_tick, once a command's stop conditions held none
-                for entry in pending:
-                    index, c, settled, value, first_holding, end = entry
-                    running = c
-                    result = None
-                    if settled():
-                        fired = first_holding(live)
-                        if fired is not None:
-                            result = CommandResult(fired, value)
-                        else:
-                            tell = on_tick
-                    if result is None:
-                        if now < end:
-                            continue
-                        result = CommandResult(TIMEOUT)
-                    results[index] = result
-                    remaining -= 1
-                    if c.device == "robot" and remaining:
-                        self.hold()  # the other commands go on
-                if len(pending) > remaining:
-                    pending = [entry for entry in pending if results[entry[0]] is None]
-                if tell is not None:
-                    try:
-                        tell(live)
-                    except Exception as exc:
-                        raise AdapterError(f"tick listener failed: {exc!r}") from exc
-        except AdapterError:
-            raise
-        except Exception as exc:
-            where = f"{running.device}.{running.command}"
-            raise AdapterError(f"stop condition of {where} failed: {exc!r}") from exc
-        finally:
+
+    def tick(self) -> None:
+        """Control, step, sense (``_sense`` inlined: a Python call costs ~0.1 µs per tick)."""
+        self.plant.step(self.controller.torque(self.arm), self.grip)
+        self.time += DT
+        self.arm.sense()
+        self.wrench_value = None
+        if self.recorder is not None:
+            self.recorder.tick(self.time, self.plant)
+
+    def live(self) -> LiveSnapshot:
+        return self._live
+
+    def ended(self, command: Command) -> None:
+        """The arm holds as soon as its command has ended; the other commands go on."""
+        if command.device == "robot":
             self.hold()
-        return results  # type: ignore[return-value]
+
+    def stopped(self) -> None:
+        self.hold()
 
     def hold(self) -> None:
         """Hold the current pose (or configuration) with the impedance of the last command."""
@@ -457,8 +413,8 @@ class SimulatedCell:
     # -- commands: each starts its command and returns (settled?, value) ------------------------
 
     def _robot_moveCartesian(
-        self, goal, task, stiffness, damping, speed, angular_speed, ref
-    ) -> tuple[Callable[[], bool], None]:
+        self, c: Command, goal, task, stiffness, damping, speed, angular_speed, ref
+    ) -> Started:
         if ref is not None:
             goal = self.scene_pose(ref) * goal
         task = pin.SE3.Identity() if task is None else task
@@ -466,27 +422,27 @@ class SimulatedCell:
             self.arm, goal, task, stiffness, damping, speed, angular_speed
         )
         self._start_command()
-        return _always, None
+        return Started(always, nothing, c.stop)
 
-    def _robot_moveJoint(self, q, stiffness, damping) -> tuple[Callable[[], bool], None]:
+    def _robot_moveJoint(self, c: Command, q, stiffness, damping) -> Started:
         self.controller = JointImpedance(self.arm, q, stiffness, damping)
         self._start_command()
-        return _always, None
+        return Started(always, nothing, c.stop)
 
-    def _gripper_open(self) -> tuple[Callable[[], bool], None]:
-        return self._grip(-OPEN_FORCE)
+    def _gripper_open(self, c: Command) -> Started:
+        return self._grip(c, -OPEN_FORCE)
 
-    def _gripper_close(self, force: float) -> tuple[Callable[[], bool], None]:
-        return self._grip(force)
+    def _gripper_close(self, c: Command, force: float) -> Started:
+        return self._grip(c, force)
 
-    def _grip(self, force: float) -> tuple[Callable[[], bool], None]:
+    def _grip(self, c: Command, force: float) -> Started:
         self.grip = force
         self.grip_start = self.time
         self.grip_settled = False
         view = self._live.gripper
-        return (lambda: view.done), None
+        return Started(lambda: view.done, nothing, c.stop)
 
-    def _camera_localize(self, target: str) -> tuple[Callable[[], bool], pin.SE3]:
+    def _camera_localize(self, c: Command, target: str) -> Started:
         true = self.scene_pose(target)
         sigma_p, sigma_r = self.noise
         offset = self.rng.normal(0.0, sigma_p, 3)
@@ -495,7 +451,8 @@ class SimulatedCell:
         axis /= np.linalg.norm(axis)
         rotation = pin.exp3(angle * axis) @ true.rotation
         self.camera_done = True
-        return _always, pin.SE3(rotation, true.translation + offset)
+        pose = pin.SE3(rotation, true.translation + offset)
+        return Started(always, lambda: pose, c.stop)
 
     # -- the 1 kHz loop ------------------------------------------------------------------------
 
@@ -530,30 +487,3 @@ class SimulatedCell:
         state: one native call of the arm state."""
         self.arm.sense()
         self.wrench_value = None
-
-    def _tick(self) -> None:
-        """Control, step, sense (``_sense`` inlined: a Python call costs ~0.1 µs per tick)."""
-        self.plant.step(self.controller.torque(self.arm), self.grip)
-        self.time += DT
-        self.arm.sense()
-        self.wrench_value = None
-        if self.recorder is not None:
-            self.recorder.tick(self.time, self.plant)
-
-
-def _always() -> bool:
-    return True
-
-
-def _first_holding(stops: Sequence[StopCondition]) -> Callable[[Any], str | None]:
-    """The stop conditions as one function, evaluated every tick: the name of the first that
-    holds, in declaration order, or None."""
-    checks = tuple((stop.holds, stop.name) for stop in stops)
-
-    def first_holding(snapshot: Any) -> str | None:
-        for holds, name in checks:
-            if holds(snapshot):
-                return name
-        return None
-
-    return first_holding

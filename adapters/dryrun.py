@@ -24,11 +24,11 @@ from lightrocks.runtime.contract import (
     TIMEOUT,
     AdapterError,
     Command,
-    CommandResult,
-    TickListener,
+    StopCondition,
     Vector3,
     Wrench,
 )
+from lightrocks.runtime.control_loop import Started, TickingAdapter
 
 SensorScript = Mapping[str, Any | Callable[[float], Any]]
 
@@ -36,7 +36,7 @@ PER_COMMAND = ("goalReached", "done", "travel", "turned", "peakForce")
 """Sensors that describe the running command: neutral again when the next one starts."""
 
 
-class DryRunAdapter:
+class DryRunAdapter(TickingAdapter):
     """Implements :class:`runtime.contract.Adapter` for whatever devices a cell declares.
 
     ``outcomes`` scripts outcomes per command, ``{"gripper.close": ["empty", "holding"]}``:
@@ -61,6 +61,7 @@ class DryRunAdapter:
         self.scene = scene
         self.duration = duration
         self.step = step
+        self.PERIOD = step
         self._outcomes = {k: list(v) for k, v in (outcomes or {}).items()}
         self._script = dict(sensors or {})
         self._time = 0.0
@@ -112,47 +113,28 @@ class DryRunAdapter:
 
     # -- commands -------------------------------------------------------------------------
 
-    def execute(
-        self, commands: Sequence[Command], on_tick: TickListener | None = None
-    ) -> list[CommandResult]:
-        """Tick the commands together, each until its own stop condition or budget."""
-        devices = [c.device for c in commands]
-        if len(set(devices)) < len(devices):
-            raise AdapterError(f"two commands at once for one device: {devices}")
-        runs = [self._run(c) for c in commands]
-        results: list[CommandResult | None] = [None] * len(runs)
-        start = self._time
-        current = commands[0]
-        try:
-            while None in results:
-                self._time = round(self._time + self.step, 9)
-                going_on = None  # the first snapshot whose stop conditions all failed
-                for index, run in enumerate(runs):
-                    if results[index] is None:
-                        current = commands[index]
-                        results[index], checked = run(self._time - start)
-                        if going_on is None:
-                            going_on = checked
-                if going_on is not None and on_tick is not None:
-                    try:
-                        on_tick(going_on)
-                    except Exception as exc:
-                        raise AdapterError(f"tick listener failed: {exc!r}") from exc
-        except AdapterError:
-            raise
-        except Exception as exc:
-            name = f"{current.device}.{current.command}"
-            raise AdapterError(f"stop condition of {name} failed: {exc!r}") from exc
-        return results  # type: ignore[return-value]
+    # -- the control loop (runtime.control_loop) -------------------------------------------
 
-    def _run(self, c: Command) -> Callable[[float], tuple[CommandResult | None, Any]]:
-        """Start one command; the returned function ticks it and tells how it ended, and the
-        snapshot it checked the stop conditions on when none of them held."""
-        if c.command not in self._commands.get(c.device, ()):
-            raise AdapterError(f"unknown command {c.device}.{c.command}")
+    def start(self, commands: Sequence[Command]) -> list[Started]:
+        """Start the commands; each settles after ``duration`` and then ends with its
+        scripted outcome, if it has one."""
+        for c in commands:
+            if c.command not in self._commands.get(c.device, ()):
+                raise AdapterError(f"unknown command {c.device}.{c.command}")
+        return [self._started(c) for c in commands]
+
+    def tick(self) -> None:
+        self._time = round(self._time + self.step, 9)
+
+    def live(self) -> SimpleNamespace:
+        return self.snapshot()
+
+    def _started(self, c: Command) -> Started:
+        """One command, its scripted outcome taken: the next scripted outcome is this
+        call's however it ends; ``timeout`` keeps its stop conditions from being checked."""
         self.calls.append((c.device, c.command, dict(c.args)))
         scripted = self._outcomes.get(f"{c.device}.{c.command}") or []
-        planned = scripted.pop(0) if scripted else None  # this call's, however it ends
+        planned = scripted.pop(0) if scripted else None
         if planned == "error":
             raise AdapterError(f"scripted fault of {c.device}.{c.command}")
         if planned not in (None, TIMEOUT) and planned not in {s.name for s in c.stop}:
@@ -165,27 +147,21 @@ class DryRunAdapter:
         for sensor in PER_COMMAND:
             if sensor in state:
                 state[sensor] = self._neutral[c.device][sensor]
-        settled, value = False, None
+        start = self._time
+        settled: list[Any] = []  # the command's value, once it has run its duration
 
-        def tick(elapsed: float) -> tuple[CommandResult | None, Any]:
-            nonlocal settled, value
-            if not settled and elapsed >= self.duration - 1e-9:
-                settled, value = True, self._settle(c.device, c.command, c.args)
-            if settled and planned not in (None, TIMEOUT):
-                return CommandResult(planned, value), None
-            if planned == TIMEOUT:  # scripted: no stop condition holds until the budget
-                if elapsed >= c.budget - 1e-9:
-                    return CommandResult(TIMEOUT), None
-                return None, None
-            snapshot = self.snapshot()
-            for condition in c.stop:
-                if condition.holds(snapshot):
-                    return CommandResult(condition.name, value), None
-            if elapsed >= c.budget - 1e-9:
-                return CommandResult(TIMEOUT), snapshot
-            return None, snapshot
+        def checked() -> bool:
+            if not settled and self._time - start >= self.duration - 1e-9:
+                settled.append(self._settle(c.device, c.command, c.args))
+            return planned != TIMEOUT
 
-        return tick
+        def value() -> Any:
+            return settled[0] if settled else None
+
+        stop = list(c.stop)
+        if planned is not None and planned != TIMEOUT:
+            stop.insert(0, StopCondition(planned, lambda _: bool(settled)))
+        return Started(checked, value, stop)
 
     def _settle(self, device: str, command: str, args: Mapping[str, Any]) -> Any:
         """The idealised end state of a command; returns the command's value."""
