@@ -16,14 +16,27 @@ from typing import Any
 
 @dataclass(frozen=True)
 class Position:
-    """Where a node starts in its file (1-based line and column)."""
+    """Where a node starts in its file (1-based line and column) and where it ends: the
+    line and column just after its last character, as the parse tree records them (0 where
+    no end is known: built-in names, whole-file findings). Positions are told apart by their
+    start only, so a node's findings stay one finding whatever its extent."""
 
     file: str
     line: int
     column: int
+    end_line: int = field(default=0, compare=False)
+    end_column: int = field(default=0, compare=False)
 
     def __str__(self) -> str:
         return f"{self.file}:{self.line}:{self.column}"
+
+    @property
+    def has_end(self) -> bool:
+        return self.end_line > 0
+
+    def through(self, last: Position) -> Position:
+        """From this start to the end of ``last`` (a node made of several parts)."""
+        return Position(self.file, self.line, self.column, last.end_line, last.end_column)
 
 
 NOWHERE = Position("<builtin>", 0, 0)

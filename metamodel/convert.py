@@ -31,8 +31,12 @@ class Converter:
     # -- infrastructure -------------------------------------------------------------------
 
     def position(self, node: Any) -> ast.Position:
+        """Where ``node`` starts and ends (the parse tree's offsets as lines and columns)."""
         line, column = self._lines.line_column(getattr(node, "_tx_position", 0))
-        return ast.Position(self.file, line, column)
+        end = getattr(node, "_tx_position_end", None)
+        if end is None:
+            return ast.Position(self.file, line, column)
+        return ast.Position(self.file, line, column, *self._lines.line_column(end))
 
     def convert(self, node: Any) -> Any:
         rule = type(node).__name__
@@ -90,7 +94,8 @@ class Converter:
             if kind == "MemberSuffix":
                 result = ast.Member(result, suffix.name, where)
             elif kind == "CallSuffix":
-                result = ast.Call(result, self.many(suffix.arguments), result.position)
+                arguments = self.many(suffix.arguments)
+                result = ast.Call(result, arguments, result.position.through(where))
             else:
                 result = ast.Index(result, self.convert(suffix.index), where)
         return result
@@ -237,7 +242,8 @@ def _climb(
         while operators and PRECEDENCE[operators[0]] >= minimum:
             operator = operators.pop(0)
             right = parse(PRECEDENCE[operator] + 1)
-            left = ast.Binary(operator, left, right, getattr(left, "position", position))
+            start, last = getattr(left, "position", position), getattr(right, "position", position)
+            left = ast.Binary(operator, left, right, start.through(last))
         return left
 
     return parse(1)

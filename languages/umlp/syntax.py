@@ -53,9 +53,16 @@ class UMLPConverter:
         self._line_starts = [0, *(m.end() for m in re.finditer("\n", text))]
 
     def position(self, node: Any) -> ast.Position:
-        offset = getattr(node, "_tx_position", 0)
+        """Where ``node`` starts and ends (the parse tree's offsets as lines and columns)."""
+        line, column = self._line_column(getattr(node, "_tx_position", 0))
+        end = getattr(node, "_tx_position_end", None)
+        if end is None:
+            return ast.Position(self.file, line, column)
+        return ast.Position(self.file, line, column, *self._line_column(end))
+
+    def _line_column(self, offset: int) -> tuple[int, int]:
         line = bisect.bisect_right(self._line_starts, offset)
-        return ast.Position(self.file, line, offset - self._line_starts[line - 1] + 1)
+        return line, offset - self._line_starts[line - 1] + 1
 
     def convert(self, node: Any) -> Any:
         return getattr(self, f"rule_{type(node).__name__}")(node)
@@ -318,7 +325,7 @@ class UMLPConverter:
                 level = PRECEDENCE[operator]
                 while pending and PRECEDENCE[pending[-1][0]] > level:
                     right = climb(right, level + 1)
-                left = n.JBinary(operator, left, right, where)
+                left = n.JBinary(operator, left, right, where.through(right.position))
             return left
 
         return climb(operands[0], 0)
@@ -334,11 +341,12 @@ class UMLPConverter:
             if kind == "JFieldAccess":
                 result = n.JFieldAccess(result, suffix.name, where)
             elif kind == "JArguments":
-                result = n.JCall(result, self.many(suffix.arguments), result.position)
+                arguments = self.many(suffix.arguments)
+                result = n.JCall(result, arguments, result.position.through(where))
             elif kind == "JArrayAccess":
                 result = n.JArrayAccess(result, self.convert(suffix.index), where)
             else:
-                result = n.JPostfix(suffix.operator, result, result.position)
+                result = n.JPostfix(suffix.operator, result, result.position.through(where))
         return result
 
     def rule_JBracketExpression(self, node: Any) -> n.JBracket:
