@@ -16,7 +16,7 @@ from lightrocks.workbench.cachestore import Folder
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 from lightrocks.workbench.reads import Reads
 
-_TYPES = (str, int, int, str, str, str, str)
+_TYPES = (str, int, int, str, str, str, str, int, int)
 """Types of a stored finding's fields, in the order of :class:`Diagnostic`."""
 
 
@@ -46,12 +46,15 @@ class DiskStore:
     def put(self, key: str, reads: Reads, findings: list[Diagnostic]) -> None:
         entry = {
             "reads": reads.to_json(),
-            "findings": [
-                [f.file, f.line, f.column, f.code, f.severity.value, f.message, f.hint]
-                for f in findings
-            ],
+            "findings": [_stored(f) for f in findings],
         }
         self.entries.put(key, json.dumps(entry, separators=(",", ":")))
+
+
+def _stored(f: Diagnostic) -> list[Any]:
+    """A finding as it is stored: its fields in the order of :data:`_TYPES`."""
+    severity, end = f.severity.value, (f.end_line, f.end_column)
+    return [f.file, f.line, f.column, f.code, severity, f.message, f.hint, *end]
 
 
 def _finding(data: Any) -> Diagnostic:
@@ -59,5 +62,7 @@ def _finding(data: Any) -> Diagnostic:
         raise ValueError("not a stored finding")
     if not all(type(value) is kind for value, kind in zip(data, _TYPES, strict=True)):
         raise ValueError("not a stored finding")
-    file, line, column, code, severity, message, hint = data
-    return Diagnostic(file, line, column, code, Severity(severity), message, hint)
+    file, line, column, code, severity, message, hint, end_line, end_column = data
+    return Diagnostic(
+        file, line, column, code, Severity(severity), message, hint, end_line, end_column
+    )

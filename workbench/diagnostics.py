@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from typing import TYPE_CHECKING
 
@@ -27,12 +27,18 @@ class Diagnostic:
     severity: Severity
     message: str
     hint: str = ""
+    end_line: int = field(default=0, compare=False)
+    """Where the element it is reported at ends (the line and column just after it; 0 where
+    no end is known). Findings are told apart and ordered by their start only."""
+    end_column: int = field(default=0, compare=False)
 
     @classmethod
     def at(
         cls, position: Position, code: str, severity: Severity, message: str, hint: str = ""
     ) -> Diagnostic:
-        return cls(position.file, position.line, position.column, code, severity, message, hint)
+        file, line, column = position.file, position.line, position.column
+        end = (position.end_line, position.end_column)
+        return cls(file, line, column, code, severity, message, hint, *end)
 
     def __str__(self) -> str:
         text = f"{self.file}:{self.line}:{self.column}: {self.severity.value} {self.code}: "

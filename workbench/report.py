@@ -84,7 +84,7 @@ def sarif(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
                             {
                                 "physicalLocation": {
                                     "artifactLocation": {"uri": d.file},
-                                    "region": {"startLine": d.line, "startColumn": d.column},
+                                    "region": _region(d),
                                 }
                             }
                         ],
@@ -95,6 +95,15 @@ def sarif(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
         ],
     }
     return json.dumps(document, indent=2)
+
+
+def _region(d: Diagnostic) -> dict[str, int]:
+    """A finding's region: its start, and its end where the element's end is known (SARIF's
+    end column, like ours, is the column just after the region)."""
+    region = {"startLine": d.line, "startColumn": d.column}
+    if d.end_line > 0:
+        region |= {"endLine": d.end_line, "endColumn": d.end_column}
+    return region
 
 
 def github(diagnostics: Sequence[Diagnostic]) -> str:
