@@ -12,6 +12,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
+from lightrocks.runtime import DEFAULT_BUDGET
 from lightrocks.runtime.contract import Snapshot
 from lightrocks.runtime.safety import SafeRange
 
@@ -147,7 +148,7 @@ class Action(State):
 
     DEVICE: ClassVar[str] = ""
     COMMAND: ClassVar[str] = ""
-    BUDGET: ClassVar[float] = 30.0
+    BUDGET: ClassVar[float] = DEFAULT_BUDGET
     ENDS: ClassVar[tuple[Condition, ...]] = ()
     SENSORS: ClassVar[tuple[tuple[str, str], ...]] = ()
     RANGES: ClassVar[dict[str, SafeRange]] = {}

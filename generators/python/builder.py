@@ -6,7 +6,6 @@ of the derived model)."""
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 
 from lightrocks.generators.python import expressions as code
@@ -15,7 +14,6 @@ from lightrocks.generators.python.names import DOMAIN, alias, identifier, module
 from lightrocks.generators.python.values import (
     python_type,
     safe_range,
-    stereotype_value,
     value_type,
 )
 from lightrocks.generators.python.views import (
@@ -28,11 +26,10 @@ from lightrocks.generators.python.views import (
 )
 from lightrocks.languages.domain.ranges import command_ranges
 from lightrocks.languages.domain.types import DeviceT
-from lightrocks.languages.lightrocks.model import Component, Region, StateInfo
+from lightrocks.languages.lightrocks.model import Component, Region, StateInfo, running_cell
 from lightrocks.languages.lightrocks.ranges import Flows
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
-from lightrocks.metamodel.units import seconds
 from lightrocks.workbench.extensions import template_name
 from lightrocks.workbench.generators import GenerationError
 
@@ -83,8 +80,9 @@ class Builder:
             path = ".".join(module_parts(module))
             named = name if used == name else f"{name} as {used}"
             view.imports.append(f"from {dots}{path} import {named}")
-        text = repr(view)
-        view.typing_names = [n for n in ("Any", "ClassVar") if re.search(rf"\b{n}\b", text)]
+        # the component class annotates PARAMETERS with ClassVar, and its BINDINGS (a
+        # composite) or its arguments (an action) with Any
+        view.typing_names = ["Any", "ClassVar"]
         return view
 
     def _use(self, module: str, name: str) -> str:
@@ -175,9 +173,9 @@ class Builder:
             f"LOCATION = {str(component.statechart.position)!r}",
             f"LAYER = {component.layer!r}",
         ]
-        cell = self._cell(component)
+        cell = running_cell(self.workspace, component.loaded)
         if cell is not None:
-            view.constants.append(f"CELL = {self._use(DOMAIN, cell)}")
+            view.constants.append(f"CELL = {self._use(DOMAIN, identifier(cell.node.name))}")
         if region.events is not None:
             view.constants.append(f"EVENTS = {tuple_code(repr(e) for e in region.events)}")
         mapping = ", ".join(f"{n!r}: {identifier(n)!r}" for n in region.parameters)
@@ -210,7 +208,7 @@ class Builder:
             self._action(component, view, scope)
         else:
             self._region(region, view, [])
-            budget = _budget(component)
+            budget = component.time_budget
             if budget is not None:  # <<timeout>> on a skill or task
                 view.constants.append(f"BUDGET = {budget!r}")
         view.extensions = _extension_views(region)
@@ -360,11 +358,13 @@ class Builder:
         if not isinstance(device_name, ast.Name) or device is None:
             raise GenerationError(f"{call.position}: a do action must call a device command")
         command = next(c for c in device.commands if c.name == call.function.name)
-        budget = _budget(component) or seconds(stereotype_value(device.stereotypes, "timeout"))
+        budget = component.command_budget(device)
         view.constants += [
             f"DEVICE = {device_name.name!r}",
             f"COMMAND = {command.name!r}",
-            f"BUDGET = {budget!r}" if budget is not None else "BUDGET = rt.DEFAULT_BUDGET",
+            "BUDGET = rt.DEFAULT_BUDGET"
+            if budget.stereotype is None
+            else f"BUDGET = {budget.seconds!r}",
         ]
         view.constants.append(f"SENSORS = {tuple_code(repr(s) for s in _sensors(region, scope))}")
         ranges = {n: safe_range(r) for n, r in command_ranges(device_name.name, command).items()}
@@ -385,14 +385,6 @@ class Builder:
         self._invariants(view, [(i.expression, scope, i.position) for i in region.invariants])
         view.constants.append(f"OUTCOMES = {tuple_code(repr(o) for o in region.outcomes)}")
         view.tables.append("ENDS = " + self._conditions(region.end_conditions, view, scope))
-
-    def _cell(self, component: Component) -> str | None:
-        cells = sorted(
-            (s for s in self.workspace.scope(component.loaded).values()
-             if isinstance(s.node, ast.Cell)),
-            key=lambda s: s.qualified_name,
-        )  # fmt: skip
-        return identifier(cells[0].node.name) if cells else None
 
     # -- compiling ------------------------------------------------------------------------
 
@@ -434,11 +426,6 @@ def _choice(name: str, choice: ast.Pseudostate) -> str:
 
 def _extends(state: ast.State) -> bool:
     return ast.stereotype(state.stereotypes, "extends") is not None
-
-
-def _budget(component: Component) -> float | None:
-    found = component.budget
-    return seconds(found.value) if found is not None else None
 
 
 def _sensors(region: Region, scope: Scope) -> list[tuple[str, str]]:

@@ -14,12 +14,10 @@ from lightrocks.generators.sfc_iec61131.hierarchy import Node
 from lightrocks.generators.sfc_iec61131.ir import Variable
 from lightrocks.generators.sfc_iec61131.network import Branch
 from lightrocks.languages.domain.types import DeviceT, ObjectT, Type
-from lightrocks.languages.lightrocks.model import Component, Region
+from lightrocks.languages.lightrocks.model import Region
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import seconds
 from lightrocks.workbench.generators import GenerationError
-
-DEFAULT_TIMEOUT = 30.0
 
 
 class Children:
@@ -96,7 +94,7 @@ class Children:
             for c in region.end_conditions
         ]
         ends.insert(0, ("error", [acknowledged, f"{instance}.{members['error']}"]))
-        budget = time_literal(self._timeout(action, device.device))
+        budget = time_literal(action.command_budget(device.device).seconds)
         ends.append(("timeout", [f"{step}.T >= {budget}"]))
         branches = []
         for outcome, condition in ends:
@@ -155,12 +153,6 @@ class Children:
         local.initial = literal(value, declared) or ""
         self.block.locals.append(local)
         return ([] if local.initial else scope.elements(local.name, value, declared)), local.name
-
-    def _timeout(self, action: Component, device: ast.Device) -> float:
-        """The ``timeout`` stereotype of the action or of the one it extends, else its
-        device's, else 30 s."""
-        found = action.budget or ast.stereotype(device.stereotypes, "timeout")
-        return DEFAULT_TIMEOUT if found is None or not found.value else budget_seconds(found)
 
 
 def budget_seconds(stereotype: ast.Stereotype) -> float:

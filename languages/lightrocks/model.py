@@ -214,10 +214,15 @@ class Component:
             return self.base.budget
         return found
 
+    @property
+    def time_budget(self) -> float | None:
+        """:attr:`budget` in seconds; None without one (or with one LR0501 refuses)."""
+        return _duration(self.budget)
+
     def command_budget(self, device: ast.Device | None) -> Budget:
         """An action's command budget: its own ``<<timeout>>`` (or the one of the action it
         extends), else its device's, else :data:`DEFAULT_BUDGET`."""
-        own = _duration(self.budget)
+        own = self.time_budget
         if own is not None:
             return Budget(own, self.budget, own=True)
         written = ast.stereotype(device.stereotypes, "timeout") if device is not None else None

@@ -27,7 +27,7 @@ from lightrocks.languages.lightrocks.model import Component
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import fold
-from lightrocks.metamodel.units import ANGLE, FORCE, LENGTH, TIME, UnitError, lookup, seconds
+from lightrocks.metamodel.units import ANGLE, FORCE, LENGTH, TIME, UnitError, lookup
 
 TYPICAL_RATIO = 100.0
 MULTIPLES_OF_PI = {"π/4": math.pi / 4, "π/2": math.pi / 2, "π": math.pi, "2π": 2 * math.pi}
@@ -87,15 +87,13 @@ class Plausibility:
     def _budget(
         self, device: str, command: ast.Command, arguments: dict[str, ast.Expression]
     ) -> Iterator[Finding]:
-        stereotype = self.component.budget
-        budget = seconds(stereotype.value if stereotype else None)
-        if budget is None:
-            declared = Scope(self.typing, self.region).env.get(device)
-            device_stereotype = ast.stereotype(declared.device.stereotypes, "timeout")
-            budget = seconds(device_stereotype.value if device_stereotype else None)
+        declared = Scope(self.typing, self.region).env.get(device)
+        written = self.component.command_budget(declared.device)
         goal = _goal(command, arguments)
-        if budget is None or goal is None:
-            return
+        if written.stereotype is None or goal is None:
+            return  # LR0607 judges a written budget, not the default
+        budget = written.seconds
+        stereotype = self.component.budget
         motion = _relative_motion(goal, device)
         if motion is None:
             return
