@@ -21,6 +21,7 @@ from lsprotocol import types as lsp
 from lightrocks.app.lsp.spans import span
 from lightrocks.app.lsp.text import Text, contains
 from lightrocks.languages.domain.types import UNKNOWN, Type, describe
+from lightrocks.languages.lightrocks.model import BUILTIN_OUTCOMES
 from lightrocks.metamodel import ast, printer
 from lightrocks.workbench.extensions import symbol_kind
 from lightrocks.workbench.workspace import Loaded, Workspace, shown_name
@@ -69,9 +70,6 @@ class FileIndex:
         if not around:
             return None
         return max(around, key=lambda item: (item[0].start.line, item[0].start.character))[1]
-
-
-BUILTIN_OUTCOMES = ("error", "timeout", "preempted")
 
 
 class Index:

@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import fields, is_dataclass, replace
 from typing import Any
 
+from lightrocks.languages.lightrocks.model import LAYERS
 from lightrocks.languages.lightrocks.printer import print_statechart
 from lightrocks.languages.lightrocks.syntax import parse_literal, parse_statechart
 from lightrocks.metamodel import ast
@@ -386,9 +387,6 @@ def _leading(elements: Elements, kinds: tuple[type, ...]) -> Iterator[object]:
         if not isinstance(element, kinds):
             return
         yield element
-
-
-LAYERS = ("task", "skill", "action")
 
 
 def new_chart(package: str, name: str, layer: str, imports: Sequence[str] = ()) -> str:
