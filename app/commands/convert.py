@@ -1,20 +1,16 @@
 """``lightrocks convert``: a model in another statechart language, or into one.
 
-Each conversion lives in a module of its own and is found here by the suffix of the source
-file and the target named by ``--to`` (:data:`CONVERSIONS`). A conversion is a function
-``(path, text, shown) -> result`` where ``result`` has ``name`` (the file name to write),
-``text`` (the converted text, ``None`` when an error refuses the conversion) and
-``findings`` (``workbench.diagnostics.Diagnostic`` items); it raises
-``metamodel.grammar.SyntaxProblem`` for a source that does not parse. To add one, add a
-line to :data:`CONVERSIONS`.
+The conversion is chosen by the suffix of the source file (or ``--from``) and the target
+named by ``--to``, among those registered through the ``lightrocks.conversions`` entry
+points (:mod:`workbench.conversions`); only the one chosen is imported.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from lightrocks.app.commands.common import (
     EXIT_FINDINGS,
@@ -25,16 +21,8 @@ from lightrocks.app.commands.common import (
 )
 from lightrocks.workbench import report
 
-CONVERSIONS: dict[tuple[str, str], str] = {
-    (".sc", "lr"): "lightrocks.languages.umlp.interchange:convert_sc_to_lr",
-    (".lr", "sc"): "lightrocks.languages.umlp.interchange:convert_lr_to_sc",
-    (".scxml", "lr"): "lightrocks.generators.scxml.reader:convert_scxml_to_lr",
-}
-"""(source suffix, target) -> ``module:function`` of the conversion."""
-
-
-def _targets() -> list[str]:
-    return sorted({target for _, target in CONVERSIONS})
+if TYPE_CHECKING:
+    from lightrocks.workbench.conversions import Convert
 
 
 def _configure_convert(sub: argparse._SubParsersAction) -> None:
@@ -42,11 +30,10 @@ def _configure_convert(sub: argparse._SubParsersAction) -> None:
         "convert",
         help="convert models between statechart languages (UML/P .sc <-> .lr, …)",
         description="Convert each file; the conversion is chosen by the file's suffix and "
-        "--to. Known: "
-        + ", ".join(f"{source} -> .{target}" for source, target in sorted(CONVERSIONS)),
+        "--to among the registered ones (see 'list conversions').",
     )
     parser.add_argument("files", nargs="+", help="model files to convert")
-    parser.add_argument("--to", required=True, help=f"target language: {', '.join(_targets())}")
+    parser.add_argument("--to", required=True, help="target language (see 'list conversions')")
     parser.add_argument(
         "--from",
         dest="source",
@@ -60,15 +47,13 @@ def _configure_convert(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--force", action="store_true", help="replace files that exist")
 
 
-def _conversion(suffix: str, target: str):
-    key = (suffix, target.lstrip("."))
-    if key not in CONVERSIONS:
-        known = ", ".join(f"{s} -> .{t}" for s, t in sorted(CONVERSIONS))
-        raise UsageError(
-            f"no conversion from {suffix or 'a file without suffix'} to .{key[1]}; known: {known}"
-        )
-    module, _, function = CONVERSIONS[key].partition(":")
-    return getattr(importlib.import_module(module), function)
+def _conversion(suffix: str, target: str) -> Convert:
+    from lightrocks.workbench.conversions import ConversionError, load_conversion
+
+    try:
+        return load_conversion(suffix, target).convert
+    except ConversionError as error:
+        raise UsageError(str(error)) from None
 
 
 @command(_configure_convert)

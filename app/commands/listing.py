@@ -1,5 +1,5 @@
-"""``lightrocks list``: the registered languages, CoCos, generators, adapters, scenes or
-robots."""
+"""``lightrocks list``: the registered languages, CoCos, generators, conversions, adapters,
+scenes or robots."""
 
 from __future__ import annotations
 
@@ -10,10 +10,11 @@ from lightrocks.app.commands.common import EXIT_OK, all_cocos, command
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
-        "list", help="list languages, CoCos, generators, adapters, scenes or robots"
+        "list", help="list languages, CoCos, generators, conversions, adapters, scenes or robots"
     )
     parser.add_argument(
-        "what", choices=("languages", "cocos", "generators", "adapters", "scenes", "robots")
+        "what",
+        choices=("languages", "cocos", "generators", "conversions", "adapters", "scenes", "robots"),
     )
 
 
@@ -22,6 +23,7 @@ def cmd_list(args: argparse.Namespace) -> int:
     from importlib.metadata import entry_points
 
     from lightrocks.app.robots import registered
+    from lightrocks.workbench.conversions import conversions
     from lightrocks.workbench.extensions import language_extensions
     from lightrocks.workbench.generators import load_generator
     from lightrocks.workbench.languages import languages
@@ -36,6 +38,8 @@ def cmd_list(args: argparse.Namespace) -> int:
             (e.name, e.value, load_generator(e.name).description)
             for e in sorted(entry_points(group="lightrocks.generators"), key=str)
         ]
+    elif args.what == "conversions":
+        rows = [(c.name, f"{c.source} -> .{c.target}", c.description) for c in conversions()]
     elif args.what == "robots":
         rows = [(n, r.device_type, r.description) for n, r in sorted(registered().items())]
     else:

@@ -1,8 +1,9 @@
 """SCXML (W3C State Chart XML): ``<Name>.scxml`` per selected plain statechart, with a Python
 data model as python-statemachine reads it (docs/interchange.md, section SCXML).
 
-The mapping is :mod:`generators.scxml.writer`; ``lightrocks convert X.scxml --to lr`` reads
-SCXML back (:mod:`generators.scxml.reader`).
+The mapping is :mod:`generators.scxml.writer`, on the vocabulary it shares with the reader
+(:mod:`languages.scxml.markup`); ``lightrocks convert X.scxml --to lr`` reads SCXML back
+(:mod:`languages.scxml.reader`).
 """
 
 from __future__ import annotations

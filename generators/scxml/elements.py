@@ -6,7 +6,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 
 from lightrocks.generators.scxml.expressions import Translator, Untranslatable
-from lightrocks.generators.scxml.markup import lr, q
+from lightrocks.languages.scxml.markup import lr, q
 from lightrocks.metamodel import ast
 
 

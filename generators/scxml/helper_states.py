@@ -14,8 +14,8 @@ from collections.abc import Mapping
 
 from lightrocks.generators.scxml import elements
 from lightrocks.generators.scxml.chart_tree import Node
-from lightrocks.generators.scxml.markup import ERROR_EVENT, lr, q
 from lightrocks.generators.scxml.names import Names
+from lightrocks.languages.scxml.markup import ERROR_EVENT, lr, q
 
 
 class HelperStates:

@@ -14,8 +14,9 @@ Three kinds of names, each allocated by a :class:`Names` of its own document:
   to the machine itself (``machine``, ``event``, ``state``, …) and none of the words it
   rewrites in conditions (``true``, ``false``, ``null``). Any other name becomes ``v_`` with
   its letters and the code points of the rest, and a suffix keeps them apart.
-- **Event names**: a LightRocks event keeps its name, except ``done`` and ``error``, which
-  become ``done-event`` and ``error-event``: SCXML matches a transition's event by prefix,
+- **Event names** (:func:`languages.scxml.markup.event_name`, shared with the reader): a
+  LightRocks event keeps its name, except ``done`` and ``error``, which become
+  ``done-event`` and ``error-event``: SCXML matches a transition's event by prefix,
   so a transition on ``done`` would also take the engine's own ``done.state.…`` events. The
   generator's time events are ``after-<state id>-<n>`` and ``timeout-<chart>``: their ``-``
   keeps them apart from every LightRocks event.
@@ -25,9 +26,6 @@ from __future__ import annotations
 
 import keyword
 import re
-
-RESERVED_EVENTS = ("done", "error")
-EVENT_SUFFIX = "-event"
 
 _IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
 _NCNAME = re.compile(r"[^\W\d][\w.\-]*")
@@ -45,17 +43,6 @@ _MACHINE = {
     "In",
 }
 """Names the evaluator binds to the engine (never to the data model), and its ``In()``."""
-
-
-def event_name(name: str) -> str:
-    """The SCXML name of the LightRocks event ``name``."""
-    return f"{name}{EVENT_SUFFIX}" if name in RESERVED_EVENTS else name
-
-
-def lightrocks_event(name: str) -> str:
-    """The LightRocks name of the SCXML event ``name`` (inverse of :func:`event_name`)."""
-    base = name.removesuffix(EVENT_SUFFIX)
-    return base if name.endswith(EVENT_SUFFIX) and base in RESERVED_EVENTS else name
 
 
 def plain_data_name(name: str) -> bool:

@@ -16,8 +16,8 @@ from typing import NamedTuple
 
 from lightrocks.generators.scxml import elements
 from lightrocks.generators.scxml.chart_tree import Node
-from lightrocks.generators.scxml.markup import q
 from lightrocks.generators.scxml.names import Names
+from lightrocks.languages.scxml.markup import q
 from lightrocks.metamodel import ast, units
 from lightrocks.metamodel.constants import fold
 from lightrocks.metamodel.printer import expression as lightrocks_text

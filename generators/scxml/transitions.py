@@ -16,9 +16,9 @@ from lightrocks.generators.scxml import elements
 from lightrocks.generators.scxml.chart_tree import Node
 from lightrocks.generators.scxml.expressions import Translator, Untranslatable
 from lightrocks.generators.scxml.helper_states import HelperStates
-from lightrocks.generators.scxml.markup import ERROR_EVENT, lr
-from lightrocks.generators.scxml.names import Names, event_name
+from lightrocks.generators.scxml.names import Names
 from lightrocks.generators.scxml.time_events import BUDGET, TimeEvents
+from lightrocks.languages.scxml.markup import ERROR_EVENT, event_name, lr
 from lightrocks.metamodel import ast
 
 _REFUSED_STIMULI = ("timeout", "preempted")

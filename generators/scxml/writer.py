@@ -44,10 +44,10 @@ from lightrocks.generators.scxml import elements
 from lightrocks.generators.scxml.chart_tree import ChartBuilder, Node, Refusal, may_fail
 from lightrocks.generators.scxml.expressions import Translator, Untranslatable
 from lightrocks.generators.scxml.helper_states import HelperStates
-from lightrocks.generators.scxml.markup import LR, SCXML, lr, q
-from lightrocks.generators.scxml.names import Names, event_name
+from lightrocks.generators.scxml.names import Names
 from lightrocks.generators.scxml.time_events import TimeEvents
 from lightrocks.generators.scxml.transitions import TransitionWriter
+from lightrocks.languages.scxml.markup import LR, SCXML, event_name, lr, q
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import fold
 from lightrocks.metamodel.printer import stereotypes as stereotype_text

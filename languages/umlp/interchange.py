@@ -24,37 +24,27 @@ The conversion is split by direction: :mod:`languages.umlp.chart_to_lr` and
 :mod:`languages.umlp.java_to_lr` (with :mod:`languages.umlp.undeclared`) read UML/P,
 :mod:`languages.umlp.chart_to_sc` and :mod:`languages.umlp.lr_to_java` write it;
 :mod:`languages.umlp.literals` and :mod:`languages.umlp.refusal` serve both. This module
-holds the entry points ``lightrocks convert`` calls: a file's text to the target's text.
+holds the two conversions, registered as ``sc-to-lr`` and ``lr-to-sc`` through the
+``lightrocks.conversions`` entry point (:mod:`workbench.conversions`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from lightrocks.languages.umlp.chart_to_lr import sc_to_lr
 from lightrocks.languages.umlp.chart_to_sc import lr_to_sc
 from lightrocks.languages.umlp.printer import print_sc
+from lightrocks.workbench.conversions import Conversion, Converted
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
-
-
-@dataclass
-class Conversion:
-    """The result of converting one file: the target's file name and text (``None`` when an
-    error refuses the conversion), the findings, and the converted syntax tree (``unit``)."""
-
-    name: str
-    text: str | None
-    findings: list[Diagnostic] = field(default_factory=list)
-    unit: object = None
 
 
 def _has_errors(findings: Sequence[Diagnostic]) -> bool:
     return any(f.severity is Severity.ERROR for f in findings)
 
 
-def convert_sc_to_lr(path: Path, text: str, shown: str) -> Conversion:
+def convert_sc_to_lr(path: Path, text: str, shown: str) -> Converted:
     """``A.sc`` to the text of ``<chart name>.lr`` (``None`` when refused)."""
     from lightrocks.languages.lightrocks.printer import print_statechart
     from lightrocks.languages.umlp.syntax import parse_sc
@@ -63,11 +53,11 @@ def convert_sc_to_lr(path: Path, text: str, shown: str) -> Conversion:
     name = unit.statechart.name or path.stem
     result, findings = sc_to_lr(unit, name)
     if _has_errors(findings):
-        return Conversion(f"{name}.lr", None, findings, result)
-    return Conversion(f"{name}.lr", print_statechart(result), findings, result)
+        return Converted(f"{name}.lr", None, findings, result)
+    return Converted(f"{name}.lr", print_statechart(result), findings, result)
 
 
-def convert_lr_to_sc(path: Path, text: str, shown: str) -> Conversion:
+def convert_lr_to_sc(path: Path, text: str, shown: str) -> Converted:
     """A plain ``A.lr`` to the text of ``A.sc`` (``None`` when refused)."""
     from lightrocks.languages.lightrocks.syntax import parse_statechart
 
@@ -75,5 +65,9 @@ def convert_lr_to_sc(path: Path, text: str, shown: str) -> Conversion:
     result, findings = lr_to_sc(unit)
     name = f"{unit.statechart.name or path.stem}.sc"
     if _has_errors(findings):
-        return Conversion(name, None, findings, result)
-    return Conversion(name, print_sc(result), findings, result)
+        return Converted(name, None, findings, result)
+    return Converted(name, print_sc(result), findings, result)
+
+
+SC_TO_LR = Conversion(".sc", "lr", "UML/P statecharts (MontiCore) to LightRocks", convert_sc_to_lr)
+LR_TO_SC = Conversion(".lr", "sc", "plain LightRocks statecharts to UML/P", convert_lr_to_sc)

@@ -23,8 +23,8 @@ from statemachine.engines.sync import SyncEngine
 from statemachine.io import load
 
 from lightrocks.generators.python.names import identifier
-from lightrocks.generators.scxml.names import event_name
 from lightrocks.generators.scxml.writer import Document
+from lightrocks.languages.scxml.markup import event_name
 
 EPSILON = 1e-9
 

@@ -20,10 +20,10 @@ from statecharts.random_charts import random_chart
 from interchange.canonical import canonical
 from interchange.conftest import generated
 from interchange.scxml_judge import run_both, same
-from lightrocks.generators.scxml.reader import Reader, convert_scxml_to_lr
 from lightrocks.generators.scxml.writer import Document, Writer
-from lightrocks.generators.scxml.xml_tree import parse_xml
 from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.languages.scxml.reader import Reader, convert_scxml_to_lr
+from lightrocks.languages.scxml.xml_tree import parse_xml
 from lightrocks.metamodel import ast
 from lightrocks.workbench import report
 from lightrocks.workbench.check import check

@@ -12,9 +12,9 @@ import pytest
 
 from interchange.scxml_judge import Machine, simulated
 from lightrocks.generators.scxml.chart_tree import Refusal
-from lightrocks.generators.scxml.markup import LR, SCXML
 from lightrocks.generators.scxml.writer import Writer
 from lightrocks.languages.lightrocks.syntax import parse_statechart
+from lightrocks.languages.scxml.markup import LR, SCXML
 from lightrocks.metamodel import ast
 
 ROOT = Path(__file__).resolve().parents[2]

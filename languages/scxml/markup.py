@@ -1,5 +1,6 @@
 """The XML vocabulary that the SCXML writer and reader share: the SCXML namespace, the
-namespace of LightRocks' own annotations, and the event prefix of the generator's errors.
+namespace of LightRocks' own annotations, the event prefix of the generator's errors, and
+the SCXML names of LightRocks events.
 
 Both directions need these names, so they live apart from either.
 """
@@ -24,3 +25,18 @@ def q(name: str) -> str:
 def lr(name: str) -> str:
     """The qualified name of the LightRocks annotation ``name``."""
     return f"{{{LR}}}{name}"
+
+
+RESERVED_EVENTS = ("done", "error")
+EVENT_SUFFIX = "-event"
+
+
+def event_name(name: str) -> str:
+    """The SCXML name of the LightRocks event ``name``."""
+    return f"{name}{EVENT_SUFFIX}" if name in RESERVED_EVENTS else name
+
+
+def lightrocks_event(name: str) -> str:
+    """The LightRocks name of the SCXML event ``name`` (inverse of :func:`event_name`)."""
+    base = name.removesuffix(EVENT_SUFFIX)
+    return base if name.endswith(EVENT_SUFFIX) and base in RESERVED_EVENTS else name

@@ -1,18 +1,18 @@
 """SCXML executable content (``<onentry>``, ``<onexit>``, a transition's content) as
 LightRocks statements: an ``<assign>`` to a ``<data>`` is an assignment, a ``<log>`` is
 dropped (LR2132); the ``<send>`` and ``<cancel>`` of a state's time events belong to
-:mod:`generators.scxml.read_time_events`, anything else is outside the subset.
+:mod:`languages.scxml.read_time_events`, anything else is outside the subset.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
-from lightrocks.generators.scxml.markup import SCXML
-from lightrocks.generators.scxml.read_context import DROPPED, ReadContext, Refused
-from lightrocks.generators.scxml.read_expressions import ExpressionReader
-from lightrocks.generators.scxml.read_time_events import Timer
-from lightrocks.generators.scxml.xml_tree import Element
+from lightrocks.languages.scxml.markup import SCXML
+from lightrocks.languages.scxml.read_context import DROPPED, ReadContext, Refused
+from lightrocks.languages.scxml.read_expressions import ExpressionReader
+from lightrocks.languages.scxml.read_time_events import Timer
+from lightrocks.languages.scxml.xml_tree import Element
 from lightrocks.metamodel import ast
 from lightrocks.workbench.diagnostics import Severity
 

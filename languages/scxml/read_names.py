@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import re
 
-from lightrocks.generators.scxml.read_context import RENAMED, ReadContext
-from lightrocks.generators.scxml.xml_tree import Element
+from lightrocks.languages.scxml.read_context import RENAMED, ReadContext
+from lightrocks.languages.scxml.xml_tree import Element
 from lightrocks.workbench.diagnostics import Severity
 
 KEYWORDS = {

@@ -34,16 +34,15 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from lightrocks.generators.scxml.markup import ERROR_EVENT, SCXML
-from lightrocks.generators.scxml.names import lightrocks_event
-from lightrocks.generators.scxml.read_actions import ActionReader
-from lightrocks.generators.scxml.read_context import DROPPED, OUTSIDE, ReadContext, Refused
-from lightrocks.generators.scxml.read_data import DataReader
-from lightrocks.generators.scxml.read_expressions import ExpressionReader
-from lightrocks.generators.scxml.read_names import NameReader
-from lightrocks.generators.scxml.read_time_events import TimeEventReader
-from lightrocks.generators.scxml.read_transitions import TransitionReader
-from lightrocks.generators.scxml.xml_tree import (
+from lightrocks.languages.scxml.markup import ERROR_EVENT, SCXML, lightrocks_event
+from lightrocks.languages.scxml.read_actions import ActionReader
+from lightrocks.languages.scxml.read_context import DROPPED, OUTSIDE, ReadContext, Refused
+from lightrocks.languages.scxml.read_data import DataReader
+from lightrocks.languages.scxml.read_expressions import ExpressionReader
+from lightrocks.languages.scxml.read_names import NameReader
+from lightrocks.languages.scxml.read_time_events import TimeEventReader
+from lightrocks.languages.scxml.read_transitions import TransitionReader
+from lightrocks.languages.scxml.xml_tree import (
     Element,
     XmlError,
     parse_xml,
@@ -51,17 +50,8 @@ from lightrocks.generators.scxml.xml_tree import (
     written_by_target,
 )
 from lightrocks.metamodel import ast
+from lightrocks.workbench.conversions import Conversion, Converted
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
-
-
-@dataclass
-class Conversion:
-    """The result of converting one file (see ``app/commands/convert.py``)."""
-
-    name: str
-    text: str | None
-    findings: list[Diagnostic] = field(default_factory=list)
-    unit: ast.StatechartUnit | None = None
 
 
 @dataclass(eq=False)
@@ -397,7 +387,7 @@ def _stereotypes(text: str | None) -> Iterator[ast.Stereotype]:
         yield ast.Stereotype(match.group(1), match.group(2))
 
 
-def convert_scxml_to_lr(path: Path, text: str, shown: str) -> Conversion:
+def convert_scxml_to_lr(path: Path, text: str, shown: str) -> Converted:
     """``X.scxml`` to the text of ``<chart name>.lr`` (``None`` when refused)."""
     from lightrocks.languages.lightrocks.printer import print_statechart
 
@@ -407,7 +397,7 @@ def convert_scxml_to_lr(path: Path, text: str, shown: str) -> Conversion:
     except XmlError as problem:
         where = ast.Position(shown, problem.line, problem.column)
         finding = Diagnostic.at(where, OUTSIDE, Severity.ERROR, problem.message)
-        return Conversion(f"{path.stem}.lr", None, [finding])
+        return Converted(f"{path.stem}.lr", None, [finding])
     try:
         unit = reader.read(root, path.stem)
     except Refused as problem:  # one that no element above stopped
@@ -415,5 +405,13 @@ def convert_scxml_to_lr(path: Path, text: str, shown: str) -> Conversion:
         unit = None
     name = f"{unit.statechart.name if unit else path.stem}.lr"
     if unit is None or any(f.severity is Severity.ERROR for f in reader.findings):
-        return Conversion(name, None, reader.findings, unit)
-    return Conversion(name, print_statechart(unit), reader.findings, unit)
+        return Converted(name, None, reader.findings, unit)
+    return Converted(name, print_statechart(unit), reader.findings, unit)
+
+
+SCXML_TO_LR = Conversion(
+    ".scxml",
+    "lr",
+    "SCXML (W3C) of the subset the scxml target writes to LightRocks",
+    convert_scxml_to_lr,
+)

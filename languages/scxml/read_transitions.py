@@ -10,14 +10,13 @@ refused, since LightRocks transitions connect states of one level.
 
 from __future__ import annotations
 
-from lightrocks.generators.scxml.markup import ERROR_EVENT
-from lightrocks.generators.scxml.names import lightrocks_event
-from lightrocks.generators.scxml.read_actions import ActionReader
-from lightrocks.generators.scxml.read_context import ReadContext, Refused
-from lightrocks.generators.scxml.read_expressions import ExpressionReader
-from lightrocks.generators.scxml.read_names import IDENTIFIER
-from lightrocks.generators.scxml.read_time_events import TimeEventReader, Timer
-from lightrocks.generators.scxml.xml_tree import Element, descendants
+from lightrocks.languages.scxml.markup import ERROR_EVENT, lightrocks_event
+from lightrocks.languages.scxml.read_actions import ActionReader
+from lightrocks.languages.scxml.read_context import ReadContext, Refused
+from lightrocks.languages.scxml.read_expressions import ExpressionReader
+from lightrocks.languages.scxml.read_names import IDENTIFIER
+from lightrocks.languages.scxml.read_time_events import TimeEventReader, Timer
+from lightrocks.languages.scxml.xml_tree import Element, descendants
 from lightrocks.metamodel import ast
 
 _Arguments = tuple[ast.Expression, ...]

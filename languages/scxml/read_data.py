@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import ast as py
 
-from lightrocks.generators.scxml.read_context import DROPPED, RENAMED, ReadContext, Refused
-from lightrocks.generators.scxml.read_expressions import ExpressionReader
-from lightrocks.generators.scxml.read_names import NameReader
-from lightrocks.generators.scxml.xml_tree import Element, tagged
+from lightrocks.languages.scxml.read_context import DROPPED, RENAMED, ReadContext, Refused
+from lightrocks.languages.scxml.read_expressions import ExpressionReader
+from lightrocks.languages.scxml.read_names import NameReader
+from lightrocks.languages.scxml.xml_tree import Element, tagged
 from lightrocks.metamodel import ast
 from lightrocks.workbench.diagnostics import Severity
 

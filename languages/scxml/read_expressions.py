@@ -13,8 +13,8 @@ from __future__ import annotations
 import ast as py
 import re
 
-from lightrocks.generators.scxml.read_context import EXPRESSION, ReadContext, Refused
-from lightrocks.generators.scxml.xml_tree import Element
+from lightrocks.languages.scxml.read_context import EXPRESSION, ReadContext, Refused
+from lightrocks.languages.scxml.xml_tree import Element
 from lightrocks.metamodel import ast
 
 _COND_WORDS = {"true": "True", "false": "False", "null": "None", "&&": "and", "||": "or"}

@@ -10,8 +10,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from lightrocks.generators.scxml.read_context import ReadContext
-from lightrocks.generators.scxml.xml_tree import Element
+from lightrocks.languages.scxml.read_context import ReadContext
+from lightrocks.languages.scxml.xml_tree import Element
 from lightrocks.metamodel import ast
 
 _DELAY = re.compile(r"\s*(\d+(?:\.\d+)?|\.\d+)(ms|s)\s*")

@@ -11,7 +11,7 @@ import xml.parsers.expat
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from lightrocks.generators.scxml.markup import LR, SCXML
+from lightrocks.languages.scxml.markup import LR, SCXML
 
 
 @dataclass(eq=False)

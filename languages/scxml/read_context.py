@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from lightrocks.generators.scxml.xml_tree import Element
+from lightrocks.languages.scxml.xml_tree import Element
 from lightrocks.metamodel import ast
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
