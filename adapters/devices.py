@@ -26,7 +26,7 @@ from lightrocks.adapters.scene_registry import objects
 from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.sensing import WristSensor
 from lightrocks.adapters.video import VideoRecorder
-from lightrocks.runtime.contract import AdapterError, Command, Vector3, Wrench
+from lightrocks.runtime.contract import AdapterError, AdapterOption, Command, Vector3, Wrench
 from lightrocks.runtime.control_loop import Started, TickingAdapter, always, nothing
 
 DEFAULT_DAMPING = (0.7,) * 6
@@ -281,6 +281,14 @@ class SimulatedCell(TickingAdapter):
     PLANT: Callable[[str, str], Plant]
     """Builds the physics of a scene with a robot; each adapter names its own."""
     PERIOD = DT
+    OPTIONS = (
+        AdapterOption("robot", str, "the registered robot in the cell's robot slot"),
+        AdapterOption("seed", int, "seed of the perception noise"),
+        AdapterOption(
+            "perception_noise", tuple, "σ of the camera's position [m] and rotation [rad]"
+        ),
+        AdapterOption("video", str, "an MP4 file the run is rendered to"),
+    )
 
     def __init__(
         self,

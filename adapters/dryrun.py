@@ -23,6 +23,7 @@ import pinocchio as pin
 from lightrocks.runtime.contract import (
     TIMEOUT,
     AdapterError,
+    AdapterOption,
     Command,
     StopCondition,
     Vector3,
@@ -48,6 +49,13 @@ class DryRunAdapter(TickingAdapter):
     overrides sensor values, ``{"robot.wrench": Wrench(...)}`` or a function of the time.
     ``calls`` and ``holds`` record what the runtime asked for.
     """
+
+    OPTIONS = (
+        AdapterOption("duration", float, "seconds each command runs before it settles"),
+        AdapterOption("step", float, "seconds of one tick"),
+        AdapterOption("outcomes", dict, "the outcomes scripted per command"),
+        AdapterOption("sensors", dict, "sensor values scripted by device.sensor"),
+    )
 
     def __init__(
         self,

@@ -16,7 +16,7 @@ from lightrocks.app.errors import ModelError
 from lightrocks.app.ground_truth import ground_truth
 from lightrocks.app.loading import load_component
 from lightrocks.app.robots import RobotChoice, choose
-from lightrocks.app.run import RunResult, drive, success_outcome, summarize
+from lightrocks.app.run import RunResult, drive, summarize
 from lightrocks.app.specs import GenerateSpec, RunSpec, run_spec
 from lightrocks.workbench import report
 from lightrocks.workbench.check import CheckContext, check
@@ -59,10 +59,12 @@ def run(
     measurements are read, and judged by the scene's ``goal_met``, before the adapter is
     closed, because closing ends its simulation."""
     cls = cls or load(spec.model, spec.search_path, spec.robot)
-    wanted = success_outcome(cls, spec.success)
+    wanted = spec.success
     scene = scene_of(cls)
     device = (
-        None if spec.adapter is None else adapter_for(spec.adapter, scene, **spec.adapter_options)
+        None
+        if spec.adapter is None
+        else adapter_for(spec.adapter, scene, spec.seed, **spec.adapter_options)
     )
     try:
         chart = drive(

@@ -19,7 +19,7 @@ from lightrocks.app.robots import RobotChoice
 from lightrocks.app.run import success_outcome
 from lightrocks.app.script import Script
 from lightrocks.app.values import Noise, parameters, parse_delay
-from lightrocks.workbench.generators import GenerationError, load_generator
+from lightrocks.workbench.generators import GenerationError, load_generator, parse_options
 from lightrocks.workbench.languages import language_for
 
 
@@ -30,7 +30,8 @@ class GenerateSpec:
     models: tuple[Path, ...]
     search_path: tuple[Path, ...]
     target: str
-    options: Mapping[str, str] = field(default_factory=dict)
+    options: Mapping[str, Any] = field(default_factory=dict)
+    """Every option the target declares, read (``workbench.generators.parse_options``)."""
     templates: Path | None = None
 
 
@@ -45,10 +46,10 @@ def generate_spec(
     options: Mapping[str, str] | None = None,
     templates: Path | None = None,
 ) -> GenerateSpec:
-    """A generation request; an unknown target, or a model file of a language the generators
-    do not read (a UML/P ``.sc`` chart: convert it first), is a ``GenerationError`` before
-    anything is checked."""
-    load_generator(target)
+    """A generation request; an unknown target, an option it does not declare or a bad value
+    (an ``OptionError``), or a model file of a language the generators do not read (a UML/P
+    ``.sc`` chart: convert it first), is a ``GenerationError`` before anything is checked."""
+    read = parse_options(load_generator(target), options or {})
     for model in models:
         language = language_for(model.suffix) if model.is_file() else None
         if language is not None and language.name not in GENERATED_LANGUAGES:
@@ -57,7 +58,7 @@ def generate_spec(
                 f"(.lrd), not {language.name} ({model.suffix}); convert it first: "
                 f"lightrocks convert {model} --to lr"
             )
-    return GenerateSpec(tuple(models), tuple(search_path), target, dict(options or {}), templates)
+    return GenerateSpec(tuple(models), tuple(search_path), target, read, templates)
 
 
 @dataclass(frozen=True)
@@ -70,23 +71,22 @@ class RunSpec:
     """Attribute name of the generated class -> typed value in SI units."""
     adapter: str | None = None
     adapter_options: Mapping[str, Any] = field(default_factory=dict)
-    """Keyword arguments the adapter accepts (seed, noise, video, script), checked."""
+    """The options chosen for the adapter (noise, video, script, robot, …), checked against
+    what it declares; the seed is given to it where it declares one."""
     seed: int = 0
-    noise: Noise = (0.0, 0.0)
     trace: Path | None = None
     events: tuple[str | float, ...] = ()
     """Events to send once the chart rests, and clock advances in seconds."""
     success: str | None = None
+    """The outcome that counts as success, checked: the one chosen, else the chart's first
+    end condition; ``None`` for a plain chart, which succeeds by resting without error."""
     robot: RobotChoice | None = None
     """The robot in the cell's robot slot, where the user chose one (``--robot``); the
     class of ``model`` is loaded for it, and the adapter simulates it."""
 
     def for_seed(self, seed: int) -> RunSpec:
         """The same run with another seed, tracing to ``run.seed3.jsonl`` where it traces."""
-        options = dict(self.adapter_options)
-        if "seed" in options:
-            options["seed"] = seed
-        return replace(self, seed=seed, adapter_options=options, trace=seed_trace(self.trace, seed))
+        return replace(self, seed=seed, trace=seed_trace(self.trace, seed))
 
     @property
     def header(self) -> dict[str, Any]:
@@ -116,23 +116,32 @@ def run_spec(
     events: Sequence[str] = (),
     success: str | None = None,
     robot: RobotChoice | None = None,
+    robot_ip: str | None = None,
+    confirm: bool = False,
 ) -> RunSpec:
     """A run of the loaded class ``cls`` of ``model`` from its user's words: ``name=value``
     parameters, ``+500ms`` clock advances among the events; a ``RunError`` says what is
-    wrong before anything starts. With ``robot``, ``cls`` is the class loaded for it."""
-    success_outcome(cls, success)
+    wrong before anything starts. With ``robot``, ``cls`` is the class loaded for it;
+    ``robot_ip`` and ``confirm`` are for an adapter of a real arm (``franka``)."""
     robot_name = robot.name if robot is not None else None
     return RunSpec(
         model=model,
         search_path=tuple(search_path),
         params=parameters(cls, params),
         adapter=adapter,
-        adapter_options=adapter_options(adapter, seed, noise, video, script, robot_name),
+        adapter_options=adapter_options(
+            adapter,
+            noise=noise,
+            video=video,
+            script=script,
+            robot=robot_name,
+            robot_ip=robot_ip,
+            confirm=confirm or None,
+        ),
         seed=seed,
-        noise=noise,
         trace=trace,
         events=tuple(parse_delay(e) if e.startswith("+") else e for e in events),
-        success=success,
+        success=success_outcome(cls, success),
         robot=robot,
     )
 

@@ -118,6 +118,18 @@ class Command:
     budget: float
 
 
+@dataclass(frozen=True)
+class AdapterOption:
+    """An option an adapter's constructor takes beside ``scene``, declared by the adapter
+    (``OPTIONS``) so that the front doors offer, check and list it without guessing."""
+
+    name: str
+    """The constructor's keyword."""
+    kind: type | tuple[type, ...]
+    """What its value is, checked before the adapter is built."""
+    doc: str
+
+
 TIMEOUT = "timeout"
 
 

@@ -40,6 +40,12 @@ def _configure_run(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--video", metavar="FILE", help="record a video (.mp4) or PNG frames")
     parser.add_argument(
+        "--robot-ip", metavar="ADDRESS", help="the address of a real arm (--adapter franka)"
+    )
+    parser.add_argument(
+        "--confirm", action="store_true", help="ask once before a real arm's first motion"
+    )
+    parser.add_argument(
         "--script",
         metavar="FILE",
         help="JSON file of scripted outcomes and sensor values for the dry run",
@@ -71,7 +77,6 @@ def cmd_run(args: argparse.Namespace) -> int:
     from lightrocks.app import display, pipeline, values
     from lightrocks.app.errors import ModelError, RunError, SceneError
     from lightrocks.app.robots import choose
-    from lightrocks.app.run import success_outcome
     from lightrocks.app.script import read_script
     from lightrocks.app.seeds import run_seeds
     from lightrocks.app.specs import run_spec
@@ -90,13 +95,16 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--video records a single run: leave out --seeds")
     if (args.breakpoints or args.paused or args.aborts or args.monitor_public) and not args.monitor:
         raise UsageError("--break, --abort-at, --paused and --monitor-public need --monitor")
+    if (args.robot_ip or args.confirm) and args.adapter is None:
+        raise UsageError("--robot-ip and --confirm are for a real arm: give --adapter franka")
+    if args.robot_ip and args.seeds is not None:
+        raise UsageError("a real arm runs one run at a time: leave out --seeds")
     if args.monitor and args.seeds is not None:
         raise UsageError("--monitor watches a single run: leave out --seeds")
     try:
         noise = values.parse_noise(args.perception_noise) if args.perception_noise else (0.0, 0.0)
         robot = choose(args.robot) if args.robot is not None else None
         cls = pipeline.load(model, search_path, robot)
-        wanted = success_outcome(cls, args.success)
         script = read_script(script_file, cls) if script_file else None
         spec = run_spec(
             cls,
@@ -112,6 +120,8 @@ def cmd_run(args: argparse.Namespace) -> int:
             events=events,
             success=args.success,
             robot=robot,
+            robot_ip=args.robot_ip,
+            confirm=args.confirm,
         )
         if args.seeds is not None:
             seeds = range(args.seed, args.seed + args.seeds)
@@ -119,7 +129,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 results = run_seeds(
                     spec, seeds, workers=args.workers, done=lambda r: advance(r.success)
                 )
-            return display.show_seeds(cls.NAME, wanted, results)
+            return display.show_seeds(cls.NAME, spec.success, results)
         watch = watch_for(args, model, search_path, cls.NAME) if args.monitor else None
         with display.live_status() as progress:
             result = pipeline.run(spec, cls, progress=progress, watch=watch)

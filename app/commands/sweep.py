@@ -80,7 +80,6 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     from lightrocks.app import display, pipeline, sweep, sweeplog, values
     from lightrocks.app.errors import ModelError, RunError, SceneError
     from lightrocks.app.robots import choose
-    from lightrocks.app.run import success_outcome
     from lightrocks.app.specs import run_spec
     from lightrocks.workbench.generators import GenerationError
 
@@ -101,7 +100,6 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         grid = sweep.parse_grid(args.grid)
         robot = choose(args.robot) if args.robot is not None else None
         cls = pipeline.load(model, search_path, robot)
-        wanted = success_outcome(cls, args.success)
         points = sweep.grid_points(grid, noises)
         specs = [  # every value is parsed and checked before the first run starts
             run_spec(
@@ -117,6 +115,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
             )
             for point in points
         ]
+        wanted = specs[0].success  # the same outcome at every point
         arguments = _arguments(args, model, cls.__module__.partition(".")[0])
         finished = sweeplog.finished_runs(output, arguments, note) if args.resume else {}
         journal = sweeplog.Journal(output, arguments, points, finished)

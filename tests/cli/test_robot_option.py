@@ -24,6 +24,7 @@ from lightrocks.app import adapter_factory, pipeline, robots
 from lightrocks.app.cli import main
 from lightrocks.app.errors import ModelError, RunError
 from lightrocks.app.robots import choose
+from lightrocks.runtime.contract import AdapterOption
 from lightrocks.workbench.check import check
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -73,6 +74,7 @@ class RobotDryRun(DryRunAdapter):
     as the chosen robot's device type, whatever the cell asks for."""
 
     made: ClassVar[list[RobotDryRun]] = []
+    OPTIONS = (*DryRunAdapter.OPTIONS, AdapterOption("robot", str, "the robot in the slot"))
 
     def __init__(self, scene: str | None = None, *, robot: str = "lwr", **options: Any) -> None:
         super().__init__(scene, **options)
