@@ -15,6 +15,7 @@ from lightrocks.app.commands.common import (
     EXIT_FINDINGS,
     EXIT_OK,
     EXIT_USAGE,
+    MissingPart,
     UsageError,
     keep_parses_on_disk,
 )
@@ -44,12 +45,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     except UsageError as error:
         _complain(f"error: {error}")
         return EXIT_USAGE
+    except MissingPart as error:
+        _complain(f"error: {error}")
+        return EXIT_FINDINGS
     except KeyboardInterrupt:
         _complain("interrupted")
         return 130
     except Exception as error:
         if os.environ.get("LIGHTROCKS_DEBUG"):
             raise
+        if isinstance(error, ModuleNotFoundError) and (error.name or "").startswith("lightrocks."):
+            _complain(
+                f"error: {error.name} is missing from this installation: reinstall lightrocks"
+            )
+            return EXIT_FINDINGS
         detail = repr(error) if len(repr(error)) <= 300 else repr(error)[:300] + "…"
         _complain(f"internal error: {detail} (set LIGHTROCKS_DEBUG=1 for the traceback)")
         return EXIT_FINDINGS

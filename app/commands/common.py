@@ -7,6 +7,7 @@ import argparse
 import os
 import sys
 from collections.abc import Callable, Sequence
+from importlib.util import find_spec
 from pathlib import Path
 from typing import Any
 
@@ -44,6 +45,32 @@ def complain(message: str) -> None:
 
 class UsageError(Exception):
     """Wrong use of the command line: reported with exit code 2."""
+
+
+class MissingPart(Exception):
+    """A part of LightRocks itself is not installed: a broken installation, not a wrong use
+    nor a missing extra (exit code 1)."""
+
+
+def require(feature: str, parts: Sequence[str], modules: Sequence[str], extra: str) -> None:
+    """Refuse ``feature`` where what it runs on is absent, naming what: its own ``parts``
+    (modules of LightRocks, a broken installation) or the ``modules`` that ``extra`` brings."""
+    lost = [part for part in parts if not _installed(part)]
+    if lost:
+        raise MissingPart(
+            f"{feature} is missing from this installation of lightrocks ({', '.join(lost)} "
+            "not found): reinstall lightrocks"
+        )
+    missing = [module for module in modules if not _installed(module)]
+    if missing:
+        raise UsageError(f"{feature} needs {', '.join(missing)}: pip install 'lightrocks[{extra}]'")
+
+
+def _installed(module: str) -> bool:
+    try:
+        return find_spec(module) is not None
+    except ModuleNotFoundError:  # a parent package is missing
+        return False
 
 
 def existing_paths(paths: Sequence[str]) -> list[Path]:

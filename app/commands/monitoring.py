@@ -4,18 +4,19 @@ from __future__ import annotations
 
 import argparse
 import sys
-from importlib.util import find_spec
 from pathlib import Path
 from typing import Any
 
-from lightrocks.app.commands.common import UsageError, note
+from lightrocks.app.commands.common import UsageError, note, require
+
+PARTS = ("lightrocks.app.monitor", "lightrocks.app.monitor.page")
 
 
 def watch_for(args: argparse.Namespace, model: Path, search_path: list[Path], name: str) -> Any:
     """Start the page's server and tell where it is; the watch that feeds and controls it."""
+    address = monitor_address(args.monitor, args.monitor_public)
     from lightrocks.app.monitor.watch import monitor_for
 
-    address = monitor_address(args.monitor, args.monitor_public)
     monitor, watch = monitor_for(
         model, search_path, name, args.breakpoints, args.paused, args.aborts
     )
@@ -36,11 +37,10 @@ def monitor_options(parser: argparse.ArgumentParser, what: str) -> None:
 def monitor_address(text: str, public: bool = False) -> tuple[str, int]:
     """Where the page is served. An address other machines can reach serves the run's
     controls to them over plain HTTP: only with ``--monitor-public``, and with a warning."""
+    require("the monitor", PARTS, ("starlette", "uvicorn", "websockets"), "monitor")
     from lightrocks.app.monitor.guard import is_loopback
     from lightrocks.app.monitor.server import parse_address
 
-    if any(find_spec(m) is None for m in ("starlette", "uvicorn", "websockets")):
-        raise UsageError("--monitor needs its web server: pip install 'lightrocks[monitor]'")
     try:
         host, port = parse_address(text)
     except ValueError as error:

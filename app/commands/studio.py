@@ -7,9 +7,11 @@ import argparse
 import contextlib
 import sys
 import threading
-from importlib.util import find_spec
 
-from lightrocks.app.commands.common import EXIT_OK, UsageError, command, existing_paths
+from lightrocks.app.commands.common import EXIT_OK, UsageError, command, existing_paths, require
+
+PARTS = ("lightrocks.app.studio", "lightrocks.app.studio.page", "lightrocks.app.monitor")
+"""The studio's code and page, and the monitor, which serves the runs started from it."""
 
 
 def _configure_studio(sub: argparse._SubParsersAction) -> None:
@@ -23,8 +25,7 @@ def _configure_studio(sub: argparse._SubParsersAction) -> None:
 @command(_configure_studio)
 def cmd_studio(args: argparse.Namespace) -> int:
     """Serve the page on the loopback interface until Ctrl-C."""
-    if any(find_spec(m) is None for m in ("starlette", "uvicorn")):
-        raise UsageError("studio needs its web server: pip install 'lightrocks[monitor]'")
+    require("the studio", PARTS, ("starlette", "uvicorn"), "monitor")
     folders = existing_paths(args.paths)
     if not all(folder.is_dir() for folder in folders):
         raise UsageError("studio takes model-path folders")

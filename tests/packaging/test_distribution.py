@@ -4,7 +4,6 @@ data files; the repository's folder names are not importable on their own."""
 from __future__ import annotations
 
 import fnmatch
-import shutil
 import subprocess
 import sys
 import tomllib
@@ -14,7 +13,6 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-IGNORED = (".git", ".venv", "build", "*.egg-info", "__pycache__", ".*_cache", "out")
 SETUPTOOLS = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
 PACKAGE_DIR: dict[str, str] = SETUPTOOLS["package-dir"]
 DATA: list[str] = SETUPTOOLS["package-data"]["*"]
@@ -54,10 +52,7 @@ def test_every_file_is_code_or_declared_data() -> None:
 
 
 @pytest.fixture(scope="module")
-def wheel(tmp_path_factory: pytest.TempPathFactory) -> zipfile.ZipFile:
-    """Built from a copy of the sources, so that no ``build/`` folder lands in the project."""
-    source = tmp_path_factory.mktemp("source") / "lightrocks"
-    shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(*IGNORED))
+def wheel(source: Path, tmp_path_factory: pytest.TempPathFactory) -> zipfile.ZipFile:
     out = tmp_path_factory.mktemp("wheel")
     subprocess.run(
         [sys.executable, "-m", "pip", "wheel", str(source), "--no-deps", "-q", "-w", str(out)],
