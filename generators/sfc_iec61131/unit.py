@@ -27,9 +27,8 @@ from lightrocks.languages.domain.types import (
     Type,
     VectorT,
 )
-from lightrocks.languages.lightrocks.model import Component
+from lightrocks.languages.lightrocks.model import Component, visible_cells
 from lightrocks.languages.lightrocks.typing import Typing
-from lightrocks.metamodel import ast
 from lightrocks.workbench.generators import GenerationError
 
 # The handshake of a device block, written by the integrator's driver (docs/generators.md).
@@ -94,9 +93,8 @@ class UnitBuilder:
     def add_cells(self, components: list[Component]) -> None:
         cells: dict[str, tuple] = {}
         for component in components:
-            for symbol in self.typing.models.workspace.scope(component.loaded).values():
-                if isinstance(symbol.node, ast.Cell):
-                    cells[symbol.qualified_name] = (symbol.loaded, symbol.node)
+            for symbol in visible_cells(self.typing.models.workspace, component.loaded):
+                cells[symbol.qualified_name] = (symbol.loaded, symbol.node)
         for qualified in sorted(cells):
             loaded, cell = cells[qualified]
             for device in cell.devices:

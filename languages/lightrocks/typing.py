@@ -40,7 +40,7 @@ from lightrocks.languages.domain.types import (
     narrows,
     quantity_of,
 )
-from lightrocks.languages.lightrocks.model import Component, ModelSet, Region
+from lightrocks.languages.lightrocks.model import Component, ModelSet, Region, visible_cells
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import beyond_a_real, overflow
 from lightrocks.metamodel.units import ONE, UnitError, lookup
@@ -87,10 +87,9 @@ class Typing:
     def environment(self, region: Region) -> dict[str, Type]:
         env = dict(_BUILTINS)
         workspace = self.models.workspace
-        for symbol in workspace.scope(region.loaded).values():
-            if isinstance(symbol.node, ast.Cell):
-                workspace.use(region.loaded, symbol)
-                env.update(self._cell_members(symbol.loaded, symbol.node))
+        for symbol in visible_cells(workspace, region.loaded):
+            workspace.use(region.loaded, symbol)
+            env.update(self._cell_members(symbol.loaded, symbol.node))
         chain = []
         current: Region | None = region
         while current is not None:

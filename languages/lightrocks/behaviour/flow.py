@@ -22,7 +22,7 @@ from lightrocks.languages.lightrocks.behaviour.store import (
     Store,
     fold_value,
 )
-from lightrocks.languages.lightrocks.model import Component, Region
+from lightrocks.languages.lightrocks.model import Component, Region, visible_cells
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 
@@ -78,13 +78,12 @@ class Flow:
         """Every attribute of the scene objects the statechart sees, at its default."""
         values = {}
         workspace = self.typing.models.workspace
-        for symbol in workspace.scope(self.root.loaded).values():
-            if isinstance(symbol.node, ast.Cell):
-                for obj in symbol.node.objects:
-                    for attribute in obj.attributes:
-                        value = fold_value(attribute.default, attribute.type)
-                        if value is not None:
-                            values[f"{obj.name}.{attribute.name}"] = value
+        for symbol in visible_cells(workspace, self.root.loaded):
+            for obj in symbol.node.objects:
+                for attribute in obj.attributes:
+                    value = fold_value(attribute.default, attribute.type)
+                    if value is not None:
+                        values[f"{obj.name}.{attribute.name}"] = value
         return tuple(sorted(values.items()))
 
     def project(self, node: tuple, store: Store) -> Store:

@@ -20,7 +20,7 @@ from lightrocks.languages.lightrocks.behaviour.variables import (
     sensor_variables,
     sort_of,
 )
-from lightrocks.languages.lightrocks.model import Region
+from lightrocks.languages.lightrocks.model import Region, visible_cells
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.metamodel import ast
 
@@ -51,9 +51,8 @@ class Scope:
     def objects(self) -> dict[str, ast.SceneObject]:
         workspace = self.typing.models.workspace
         found: dict[str, ast.SceneObject] = {}
-        for symbol in workspace.scope(self.region.loaded).values():
-            if isinstance(symbol.node, ast.Cell):
-                found.update((o.name, o) for o in symbol.node.objects)
+        for symbol in visible_cells(workspace, self.region.loaded):
+            found.update((o.name, o) for o in symbol.node.objects)
         return found
 
     def variable(self, expression: ast.Expression) -> Variable | None:
