@@ -3,7 +3,7 @@
 Each robot is an object of its own (adapters.robot, one module per robot under
 adapters/robots/); what they all have in common is here. The native tick is compiled for
 ARM_DOF arm joints and two finger slides of FINGER_TRAVEL each (``NV`` = 9 joints, arm first;
-adapters.kernel_layout repeats these numbers). The hand carries the sites ``tcp`` and ``ft``,
+adapters.kernels.layout repeats these numbers). The hand carries the sites ``tcp`` and ``ft``,
 and the wrist's force and torque sensors sit at ``ft``.
 """
 

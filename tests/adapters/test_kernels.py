@@ -10,7 +10,7 @@ import pytest
 from numba.core.dispatcher import Dispatcher
 
 from lightrocks.adapters import kernels as k
-from lightrocks.adapters.kernel_jit import KERNELS, digest
+from lightrocks.adapters.kernels.jit import KERNELS, digest
 
 
 def _rotation_vectors() -> list[np.ndarray]:
@@ -94,7 +94,7 @@ def test_cartesian_refresh_equals_the_numpy_formulas() -> None:
 def _dispatchers() -> list:
     """Every compiled function of the kernel modules."""
     folder = Path(k.__file__).parent
-    modules = [import_module(f"lightrocks.adapters.{p.stem}") for p in folder.glob("kernel_*.py")]
+    modules = [import_module(f"lightrocks.adapters.kernels.{p.stem}") for p in folder.glob("*.py")]
     found = {id(f): f for m in modules for f in vars(m).values() if isinstance(f, Dispatcher)}
     return list(found.values())
 
@@ -110,9 +110,9 @@ def test_every_kernel_is_cached_under_the_digest_of_all_kernel_modules() -> None
 
 def test_the_digest_changes_with_any_kernel_module(tmp_path: Path) -> None:
     folder = Path(k.__file__).parent
-    for path in folder.glob("kernel*.py"):
+    for path in folder.glob("*.py"):
         shutil.copy(path, tmp_path / path.name)
     assert digest(tmp_path) == KERNELS
-    layout = tmp_path / "kernel_layout.py"
+    layout = tmp_path / "layout.py"
     layout.write_text(layout.read_text() + "\n")
     assert digest(tmp_path) != KERNELS

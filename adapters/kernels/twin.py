@@ -10,10 +10,10 @@ import math
 import numpy as np
 from numba import carray
 
-from lightrocks.adapters.kernel_control import finger_push
-from lightrocks.adapters.kernel_foreign import doubles_at
-from lightrocks.adapters.kernel_jit import kernel
-from lightrocks.adapters.kernel_layout import (
+from lightrocks.adapters.kernels.control import finger_push
+from lightrocks.adapters.kernels.foreign import doubles_at
+from lightrocks.adapters.kernels.jit import kernel
+from lightrocks.adapters.kernels.layout import (
     ARM_DOF,
     B_COUNT,
     B_HEADER,
@@ -55,8 +55,12 @@ from lightrocks.adapters.kernel_layout import (
     T_TORQUE_LIMIT,
     TAU,
 )
-from lightrocks.adapters.kernel_math import cholesky, cholesky_solve
-from lightrocks.adapters.kernel_pinocchio import frame_placement, pinocchio_array, place_on_joint
+from lightrocks.adapters.kernels.linalg import cholesky, cholesky_solve
+from lightrocks.adapters.kernels.pinocchio_tick import (
+    frame_placement,
+    pinocchio_array,
+    place_on_joint,
+)
 
 
 @kernel

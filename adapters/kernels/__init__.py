@@ -6,14 +6,14 @@ tick, four times the cost of the physics step itself. Here each phase is one com
 function over preallocated flat buffers: the controller (``cartesian_torque``,
 ``joint_torque``), the motor commands (``mujoco_actuate``) and the state and sensing after a
 step (``mujoco_sense``, ``pinocchio_sense``; the twin's ``twin_step``, ``twin_contacts`` and
-``twin_integrate``). Each buffer has a fixed layout (``kernel_layout``); the Python objects
+``twin_integrate``). Each buffer has a fixed layout (``layout``); the Python objects
 that own a buffer expose named views of it, so everything outside the tick reads arrays as
 before.
 
 This module is the kernels' one namespace (``from lightrocks.adapters import kernels as k``;
-``k.POS``, ``k.cartesian_torque``) over the modules that hold them by job: ``kernel_layout``,
-``kernel_math``, ``kernel_control``, ``kernel_arm``, ``kernel_mujoco``, ``kernel_pinocchio``,
-``kernel_twin``, ``kernel_foreign``; ``kernel_jit`` caches them, keyed on all of them. A cold
+``k.POS``, ``k.cartesian_torque``) over the modules that hold them by job: ``layout``,
+``linalg``, ``control``, ``arm``, ``mujoco_tick``, ``pinocchio_tick``,
+``twin``, ``foreign``; ``jit`` caches them, keyed on all of them. A cold
 start compiles for ~10 s; later starts load in ~0.2 s (``warm_up``).
 """
 
@@ -21,16 +21,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightrocks.adapters.kernel_arm import sense as sense
-from lightrocks.adapters.kernel_arm import slow_tick as slow_tick
-from lightrocks.adapters.kernel_arm import take_mass as take_mass
-from lightrocks.adapters.kernel_control import cartesian_frame as cartesian_frame
-from lightrocks.adapters.kernel_control import cartesian_refresh as cartesian_refresh
-from lightrocks.adapters.kernel_control import cartesian_torque as cartesian_torque
-from lightrocks.adapters.kernel_control import finger_push as finger_push
-from lightrocks.adapters.kernel_control import joint_torque as joint_torque
-from lightrocks.adapters.kernel_layout import *  # noqa: F403 (the buffer layouts, as k.POS)
-from lightrocks.adapters.kernel_layout import (
+from lightrocks.adapters.kernels.arm import sense as sense
+from lightrocks.adapters.kernels.arm import slow_tick as slow_tick
+from lightrocks.adapters.kernels.arm import take_mass as take_mass
+from lightrocks.adapters.kernels.control import cartesian_frame as cartesian_frame
+from lightrocks.adapters.kernels.control import cartesian_refresh as cartesian_refresh
+from lightrocks.adapters.kernels.control import cartesian_torque as cartesian_torque
+from lightrocks.adapters.kernels.control import finger_push as finger_push
+from lightrocks.adapters.kernels.control import joint_torque as joint_torque
+from lightrocks.adapters.kernels.layout import *  # noqa: F403 (the buffer layouts, as k.POS)
+from lightrocks.adapters.kernels.layout import (
     ARM_SIZE,
     CARTESIAN_SIZE,
     FRAMES_SIZE,
@@ -40,18 +40,18 @@ from lightrocks.adapters.kernel_layout import (
     T_BOX,
     TWIN_SIZE,
 )
-from lightrocks.adapters.kernel_math import cholesky as cholesky
-from lightrocks.adapters.kernel_math import cholesky_solve as cholesky_solve
-from lightrocks.adapters.kernel_math import exp3 as exp3
-from lightrocks.adapters.kernel_math import log3 as log3
-from lightrocks.adapters.kernel_math import spd_inverse as spd_inverse
-from lightrocks.adapters.kernel_mujoco import mujoco_actuate as mujoco_actuate
-from lightrocks.adapters.kernel_mujoco import mujoco_sense as mujoco_sense
-from lightrocks.adapters.kernel_pinocchio import pinocchio_sense as pinocchio_sense
-from lightrocks.adapters.kernel_twin import twin_contacts as twin_contacts
-from lightrocks.adapters.kernel_twin import twin_integrate as twin_integrate
-from lightrocks.adapters.kernel_twin import twin_step as twin_step
-from lightrocks.adapters.kernel_twin import twin_wrist as twin_wrist
+from lightrocks.adapters.kernels.linalg import cholesky as cholesky
+from lightrocks.adapters.kernels.linalg import cholesky_solve as cholesky_solve
+from lightrocks.adapters.kernels.linalg import exp3 as exp3
+from lightrocks.adapters.kernels.linalg import log3 as log3
+from lightrocks.adapters.kernels.linalg import spd_inverse as spd_inverse
+from lightrocks.adapters.kernels.mujoco_tick import mujoco_actuate as mujoco_actuate
+from lightrocks.adapters.kernels.mujoco_tick import mujoco_sense as mujoco_sense
+from lightrocks.adapters.kernels.pinocchio_tick import pinocchio_sense as pinocchio_sense
+from lightrocks.adapters.kernels.twin import twin_contacts as twin_contacts
+from lightrocks.adapters.kernels.twin import twin_integrate as twin_integrate
+from lightrocks.adapters.kernels.twin import twin_step as twin_step
+from lightrocks.adapters.kernels.twin import twin_wrist as twin_wrist
 
 
 def warm_up() -> None:

@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
-from lightrocks.adapters.kernel_jit import kernel
-from lightrocks.adapters.kernel_layout import (
+from lightrocks.adapters.kernels.jit import kernel
+from lightrocks.adapters.kernels.layout import (
     ARM_DOF,
     BIAS,
     C_D,
@@ -63,7 +63,7 @@ from lightrocks.adapters.kernel_layout import (
     TAU,
     TWIST,
 )
-from lightrocks.adapters.kernel_math import exp3, log3, spd_inverse
+from lightrocks.adapters.kernels.linalg import exp3, log3, spd_inverse
 
 
 @kernel

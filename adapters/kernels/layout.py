@@ -18,7 +18,7 @@ if (ARM_DOF, NV, FINGER_TRAVEL, GRIPPER_BAND) != (
     robot_model.GRIPPER_BAND,
 ):
     raise ImportError(
-        "adapters/kernel_layout.py must repeat the constants of adapters/robot_model.py"
+        "adapters/kernels/layout.py must repeat the constants of adapters/robot_model.py"
     )
 
 DT = 0.001

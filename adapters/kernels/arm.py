@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
-from lightrocks.adapters.kernel_jit import kernel
-from lightrocks.adapters.kernel_layout import (
+from lightrocks.adapters.kernels.jit import kernel
+from lightrocks.adapters.kernels.layout import (
     ARM_DOF,
     FT_POS,
     FT_ROT,
@@ -29,7 +29,7 @@ from lightrocks.adapters.kernel_layout import (
     SLOW_EVERY,
     TICKS,
 )
-from lightrocks.adapters.kernel_math import spd_inverse
+from lightrocks.adapters.kernels.linalg import spd_inverse
 
 
 @kernel

@@ -4,8 +4,8 @@ numba compiles a function once and caches it next to its module (``__pycache__``
 user's cache folder where that is not writable; ``NUMBA_CACHE_DIR`` overrides both), keyed on
 the content of that module's file alone. A kernel, however, compiles in what it calls and the
 buffer offsets it reads from the other kernel modules, so a cache keyed on its own file would
-run stale code after one of them changed. Here the key is a digest of every ``kernel*.py``
-module of this folder: a change in any of them compiles all kernels again on the next start.
+run stale code after one of them changed. Here the key is a digest of every module of the
+``kernels`` package: a change in any of them compiles all kernels again on the next start.
 The cache is still keyed on the CPU and written atomically, so processes may share it.
 """
 
@@ -29,7 +29,7 @@ from numba.core.caching import (
 def digest(folder: Path) -> bytes:
     """One digest of the kernel modules in ``folder``, by name and content."""
     hashed = hashlib.sha256()
-    for path in sorted(folder.glob("kernel*.py")):
+    for path in sorted(folder.glob("*.py")):
         hashed.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     return hashed.digest()
 

@@ -7,10 +7,10 @@ from __future__ import annotations
 import numpy as np
 from numba import carray, farray
 
-from lightrocks.adapters.kernel_arm import sense, slow_tick, take_mass
-from lightrocks.adapters.kernel_foreign import doubles_at
-from lightrocks.adapters.kernel_jit import kernel
-from lightrocks.adapters.kernel_layout import (
+from lightrocks.adapters.kernels.arm import sense, slow_tick, take_mass
+from lightrocks.adapters.kernels.foreign import doubles_at
+from lightrocks.adapters.kernels.jit import kernel
+from lightrocks.adapters.kernels.layout import (
     ARM_DOF,
     BIAS,
     F_FT,

@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightrocks.adapters.kernel_arm import sense, slow_tick, take_mass
-from lightrocks.adapters.kernel_control import finger_push
-from lightrocks.adapters.kernel_foreign import c_call
-from lightrocks.adapters.kernel_jit import kernel
-from lightrocks.adapters.kernel_layout import (
+from lightrocks.adapters.kernels.arm import sense, slow_tick, take_mass
+from lightrocks.adapters.kernels.control import finger_push
+from lightrocks.adapters.kernels.foreign import c_call
+from lightrocks.adapters.kernels.jit import kernel
+from lightrocks.adapters.kernels.layout import (
     ARM_DOF,
     BIAS,
     FT_POS,

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from lightrocks.adapters.kernel_jit import kernel
+from lightrocks.adapters.kernels.jit import kernel
 
 _EPS = float(np.finfo(float).eps)
 _PREC2 = _EPS ** (1.0 / 3.0)
