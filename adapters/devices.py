@@ -1,8 +1,9 @@
-"""The device layer both adapters share: robot, gripper and camera on top of a ``Plant``.
+"""The device layer the simulated adapters share: robot, gripper and camera on a ``Plant``.
 
-A plant is the physics (MuJoCo, or Pinocchio ABA with penalty contacts); everything a skill
-sees — commands, argument checks, sensors, stop conditions, the 1 kHz loop — lives here, so
-the two adapters behave alike by construction. See docs/adapters.md for the contract.
+A plant is the physics (MuJoCo, or the Pinocchio twin with penalty contacts); everything a
+skill sees — commands, argument checks, sensors, what one 1 kHz tick does — lives here, so
+the MuJoCo and Pinocchio adapters behave alike by construction; the loop that runs commands
+is the runtime's (``runtime.control_loop``). See docs/adapters.md for the contract.
 """
 
 from __future__ import annotations

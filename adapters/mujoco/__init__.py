@@ -7,7 +7,8 @@ from lightrocks.adapters.mujoco.plant import MujocoPlant
 
 
 class MujocoAdapter(SimulatedCell):
-    """``runtime.contract.Adapter`` on MuJoCo; scenes are adapters/models/<scene>.xml."""
+    """``runtime.contract.Adapter`` on a MuJoCo simulation of a registered scene
+    (``lightrocks.scenes``) with a registered robot."""
 
     PLANT = MujocoPlant
 

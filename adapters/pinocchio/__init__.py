@@ -7,7 +7,8 @@ from lightrocks.adapters.pinocchio.plant import PinocchioPlant
 
 
 class PinocchioAdapter(SimulatedCell):
-    """``runtime.contract.Adapter`` on Pinocchio ABA-style dynamics with penalty contacts."""
+    """``runtime.contract.Adapter`` on the twin: Pinocchio rigid-body dynamics (CRBA and RNEA)
+    with penalty contacts against static boxes and the scenes' fixture twins."""
 
     PLANT = PinocchioPlant
 
