@@ -1,0 +1,109 @@
+"""The connection to a Franka arm through libfranka (pylibfranka), and what can go wrong.
+
+Every way the robot or the network can fail becomes one line that says what happened and
+what to do about it: an ``AdapterError``, which the runtime turns into the outcome ``error``.
+libfranka waits a minute for an address that does not answer; a plain TCP probe of the FCI
+port first turns that into a few seconds, and retries a refusal for a moment, since a robot
+(or a simulator) that has just come up may refuse the first connection.
+"""
+
+from __future__ import annotations
+
+import socket
+import time
+from typing import Any
+
+from lightrocks.adapters.franka.limits import joints_in_range
+from lightrocks.runtime.contract import AdapterError
+
+FCI_PORT = 1337
+PROBE_TIMEOUT = 3.0
+"""Seconds an address has to answer on the FCI port."""
+REFUSED_RETRY = 3.0
+"""Seconds a refused connection is tried again."""
+INSTALL = "pip install 'lightrocks[franka]'"
+
+
+def client() -> Any:
+    """The pylibfranka module; a clear error when the extra is not installed."""
+    try:
+        import pylibfranka
+    except ImportError:
+        raise ValueError(f"adapter 'franka' needs pylibfranka: {INSTALL}") from None
+    return pylibfranka
+
+
+def probe(address: str) -> None:
+    """Answer the FCI port at ``address`` within PROBE_TIMEOUT, or say why not."""
+    deadline = time.monotonic() + REFUSED_RETRY
+    while True:
+        try:
+            with socket.create_connection((address, FCI_PORT), timeout=PROBE_TIMEOUT):
+                return
+        except socket.gaierror:
+            raise AdapterError(f"unknown robot address {address!r}: no such host") from None
+        except ConnectionRefusedError:
+            if time.monotonic() < deadline:
+                time.sleep(0.2)
+                continue
+            raise AdapterError(
+                f"the robot at {address} refused the connection: is it on, its brakes open "
+                "and FCI enabled in Desk (or the simulator started)?"
+            ) from None
+        except TimeoutError:
+            raise AdapterError(
+                f"the robot at {address} did not answer within {PROBE_TIMEOUT:.0f} s: check "
+                "the address and the network (docs/adapters.md, 'A real Franka arm')"
+            ) from None
+        except OSError as error:
+            raise AdapterError(f"cannot reach the robot at {address}: {error.strerror}") from None
+
+
+def connect(address: str) -> Any:
+    """The robot at ``address`` (libfranka's real-time check off: on a real arm, run under a
+    real-time kernel as Franka documents; see docs/adapters.md)."""
+    franka = client()
+    probe(address)
+    try:
+        return franka.Robot(address, franka.RealtimeConfig.kIgnore)
+    except Exception as error:
+        raise AdapterError(f"cannot connect to the robot at {address}: {one_line(error)}") from None
+
+
+def check_start(state: Any, address: str) -> None:
+    """The arm's state allows a task: idle, no errors, every joint inside its range."""
+    mode = state.robot_mode.name
+    if mode != "Idle":
+        hint = {
+            "Reflex": "a reflex stopped it: clear the error in Desk, then run again",
+            "UserStopped": "the user stop (emergency stop) is pressed: release it in Desk",
+            "Guiding": "it is being guided by hand: let go of the pilot buttons",
+            "Move": "another program is moving it",
+            "AutomaticErrorRecovery": "it is recovering from an error: wait and run again",
+        }.get(mode, "open its brakes and activate FCI in Desk")
+        raise AdapterError(f"the robot at {address} is in mode {mode}, not Idle: {hint}")
+    if state.current_errors:
+        raise AdapterError(f"the robot at {address} reports errors: {state.current_errors}")
+    joints_in_range(list(state.q), f"the robot at {address} starts outside its joint ranges")
+
+
+def fault(error: BaseException, address: str) -> AdapterError:
+    """One line for what libfranka raised inside the control loop."""
+    name = type(error).__name__
+    text = one_line(error)
+    if name == "ControlException":
+        if "communication_constraints_violation" in text:
+            return AdapterError(
+                f"the robot at {address} stopped: communication constraints violated (the "
+                f"control loop missed its 1 ms deadline; use a real-time kernel): {text}"
+            )
+        return AdapterError(f"the robot at {address} stopped with a reflex: {text}")
+    if name == "NetworkException":
+        return AdapterError(f"lost the connection to the robot at {address}: {text}")
+    return AdapterError(f"the robot at {address} failed: {name}: {text}")
+
+
+def one_line(error: BaseException) -> str:
+    """libfranka's message on one line, without its ``libfranka:`` prefix."""
+    text = " ".join(str(error).split()) or type(error).__name__
+    return text.removeprefix("libfranka: ")

@@ -1,0 +1,186 @@
+"""The franka adapter against the protocol simulator: each elemental action as the arm runs
+it, the sensors as stop conditions read them, and the limits checked before anything moves.
+
+One simulator (the empty scene: a table and a block under the ready pose) serves the module;
+the tests run in order, each starting where the previous one left the arm.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from importlib.metadata import entry_points
+from types import SimpleNamespace
+
+import numpy as np
+import pinocchio as pin
+import pytest
+from adapter_support import address, need_franka, simulator
+
+from lightrocks.adapters.franka import link
+from lightrocks.adapters.franka.limits import Limits
+from lightrocks.runtime.contract import AdapterError, Command, StopCondition
+
+ADDRESS = address(0)
+READY_TCP = np.array([0.4893, 0.0, 0.3166])
+"""Where the Panda's ready pose puts the TCP (the simulator starts there)."""
+BLOCK_TOP = 0.15
+"""The empty scene's block: its top face [m]."""
+REACHED = StopCondition("reached", lambda s: s.robot.goalReached)
+DONE = StopCondition("done", lambda s: s.gripper.done)
+
+
+SIMULATED = pytest.mark.slow
+"""The tests on the simulator: a minute or more on two loaded cores."""
+
+
+@pytest.fixture(scope="module")
+def arm() -> Iterator[object]:
+    need_franka()
+    from lightrocks.adapters.franka import FrankaAdapter
+
+    with simulator("empty", ADDRESS):
+        adapter = FrankaAdapter("empty", robot_ip=ADDRESS)
+        try:
+            assert adapter.fault == ""
+            yield adapter
+        finally:
+            adapter.close()
+
+
+def down(arm, distance: float, **args) -> Command:
+    goal = pin.SE3(np.eye(3), np.array([0.0, 0.0, -distance])) * arm.snapshot().robot.tcp
+    contact = StopCondition("contact", lambda s: s.robot.wrench.force.z > 5.0)
+    return Command("robot", "moveCartesian", {"goal": goal, **args}, [contact, REACHED], 10.0)
+
+
+def test_the_entry_point_names_the_adapter() -> None:
+    found = {e.name: e.value for e in entry_points(group="lightrocks.adapters")}
+    assert found["franka"] == "lightrocks.adapters.franka:FrankaAdapter"
+
+
+def test_an_adapter_without_address_is_refused() -> None:
+    need_franka()
+    from lightrocks.adapters.franka import FrankaAdapter
+
+    with pytest.raises(ValueError, match="--robot-ip ADDRESS"):
+        FrankaAdapter("empty")
+    with pytest.raises(ValueError, match="no Franka arm"):
+        FrankaAdapter("empty", robot_ip=ADDRESS, robot="lwr")
+
+
+@SIMULATED
+def test_the_arm_starts_in_the_ready_pose_at_rest(arm) -> None:
+    s = arm.snapshot()
+    assert arm.devices() == {"robot": "Panda", "gripper": "ParallelGripper", "camera": "Camera"}
+    assert np.allclose(s.robot.tcp.translation, READY_TCP, atol=2e-3)
+    assert s.robot.wrench.force.norm() < 0.5
+    assert s.gripper.done and not s.gripper.holding
+    assert "block" in arm.objects()
+
+
+@SIMULATED
+def test_a_goal_outside_the_workspace_is_refused_before_anything_moves(arm) -> None:
+    before = arm.snapshot().robot.q
+    with pytest.raises(AdapterError, match="outside the workspace box"):
+        arm.execute([down(arm, 0.5)])  # 18 cm below the table top
+    with pytest.raises(AdapterError, match=r"stiffness\[2\] = 5000 N/m is above"):
+        arm.execute([down(arm, 0.05, stiffness=[3000, 3000, 5000, 300, 300, 300])])
+    with pytest.raises(AdapterError, match=r"speed 0\.500 m/s is above"):
+        arm.execute([down(arm, 0.05, speed=0.5)])
+    with pytest.raises(AdapterError, match=r"grasp force 100\.0 N is above"):
+        arm.execute([Command("gripper", "close", {"force": 100.0}, [DONE], 5.0)])
+    assert np.allclose(arm.snapshot().robot.q, before, atol=1e-4)
+
+
+@SIMULATED
+def test_a_cartesian_motion_reaches_its_goal_and_travels(arm) -> None:
+    start = arm.snapshot().robot.tcp.translation
+    (result,) = arm.execute([down(arm, 0.05, speed=0.1)])
+    s = arm.snapshot()
+    assert result.outcome == "reached"
+    assert s.robot.tcp.translation[2] == pytest.approx(start[2] - 0.05, abs=1.5e-3)
+    assert s.robot.travel.z == pytest.approx(-0.05, abs=1.5e-3)
+    assert arm.stats.ticks > 500
+
+
+@SIMULATED
+def test_a_compliant_approach_stops_at_contact_with_the_block(arm) -> None:
+    (result,) = arm.execute(
+        [down(arm, 0.2, speed=0.05, stiffness=[2000, 2000, 1000, 150, 150, 150])]
+    )
+    s = arm.snapshot()
+    assert result.outcome == "contact"
+    assert s.robot.wrench.force.z > 5.0  # the block pushes up: the cell's sign
+    assert s.robot.tcp.translation[2] == pytest.approx(BLOCK_TOP + 0.015, abs=6e-3)
+    assert s.robot.peakForce >= s.robot.wrench.force.norm() - 1e-9
+
+
+@SIMULATED
+def test_a_joint_motion_reaches_its_configuration(arm) -> None:
+    up = arm.snapshot().robot.q.copy()
+    up[3] += 0.3  # the elbow opens: the hand lifts off the block
+    (result,) = arm.execute([Command("robot", "moveJoint", {"q": up}, [REACHED], 10.0)])
+    assert result.outcome == "reached"
+    assert np.allclose(arm.snapshot().robot.q, up, atol=np.radians(0.5))
+
+
+@SIMULATED
+def test_the_hand_closes_empty_and_opens(arm) -> None:
+    (closed,) = arm.execute([Command("gripper", "close", {"force": 20.0}, [DONE], 10.0)])
+    s = arm.snapshot()
+    assert closed.outcome == "done" and not s.gripper.holding and s.gripper.width < 2e-3
+    (opened,) = arm.execute([Command("gripper", "open", {}, [DONE], 10.0)])
+    assert opened.outcome == "done" and arm.snapshot().gripper.width > 0.07
+
+
+@SIMULATED
+def test_the_camera_reports_where_the_scene_places_an_object(arm) -> None:
+    seen = StopCondition("seen", lambda s: s.camera.done)
+    (result,) = arm.execute([Command("camera", "localize", {"target": "block"}, [seen], 1.0)])
+    assert result.outcome == "seen"
+    assert np.allclose(result.value.translation, [0.5, 0.0, 0.125], atol=1e-9)
+
+
+@SIMULATED
+def test_a_budget_spent_is_a_timeout_and_the_arm_holds(arm) -> None:
+    (result,) = arm.execute([down(arm, 0.05, speed=0.01)])  # 5 s of motion
+    assert result.outcome == "reached"  # settle first
+    slow = down(arm, 0.05, speed=0.01)
+    (result,) = arm.execute([Command(slow.device, slow.command, slow.args, slow.stop, 0.2)])
+    assert result.outcome == "timeout"
+    held = arm.snapshot().robot.tcp.translation
+    arm.execute([Command("camera", "localize", {"target": "block"}, [], 0.3)])
+    assert np.allclose(arm.snapshot().robot.tcp.translation, held, atol=2e-3)
+
+
+@pytest.mark.parametrize(
+    ("mode", "words"),
+    [
+        ("Reflex", "is in mode Reflex, not Idle: a reflex stopped it"),
+        ("UserStopped", "the user stop (emergency stop) is pressed"),
+        ("Guiding", "being guided by hand"),
+    ],
+)
+def test_the_start_check_names_a_robot_in_the_wrong_mode(mode: str, words: str) -> None:
+    state = SimpleNamespace(robot_mode=SimpleNamespace(name=mode), current_errors=[], q=[0] * 7)
+    with pytest.raises(AdapterError, match=re.escape(words)):
+        link.check_start(state, "172.16.0.2")
+
+
+def test_the_start_check_refuses_errors_and_joints_at_their_ends() -> None:
+    ready = [0.0, -0.15, 0.0, -2.29, 0.0, 2.14, 0.6]
+    errors = SimpleNamespace(robot_mode=SimpleNamespace(name="Idle"), current_errors=["x"], q=ready)
+    with pytest.raises(AdapterError, match="reports errors"):
+        link.check_start(errors, "172.16.0.2")
+    stretched = SimpleNamespace(
+        robot_mode=SimpleNamespace(name="Idle"), current_errors=[], q=[*ready[:5], 3.75, 0.6]
+    )
+    with pytest.raises(AdapterError, match=r"joint 6 at 214\.9 deg is not within"):
+        link.check_start(stretched, "172.16.0.2")
+
+
+def test_the_limits_set_the_robots_reflexes_above_the_adapters_own() -> None:
+    joint, wrench = Limits(force=40.0, torque=8.0).collision_thresholds()
+    assert wrench == [50.0] * 3 + [10.0] * 3
+    assert len(joint) == 7 and min(joint) > 0
