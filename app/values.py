@@ -1,144 +1,64 @@
-"""Values given on the command line (``--param``, ``--perception-noise``), read with the
-language's own literal syntax so that units and signs mean what they mean in a model."""
+"""Values given on the command line (``--param``, ``--perception-noise``), read and checked
+by the language's literal service (:mod:`languages.lightrocks.literals`), so that units and
+signs mean what they mean in a model; its refusals become run errors naming the option."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from typing import Any
 
 from lightrocks.app.errors import RunError
-from lightrocks.languages.lightrocks.syntax import parse_literal
+from lightrocks.languages.lightrocks import literals
 from lightrocks.metamodel import ast
-from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.metamodel.units import ANGLE, LENGTH, Dimension, UnitError, lookup
+from lightrocks.metamodel.units import ANGLE, LENGTH, Dimension, lookup
 
 Noise = tuple[float, float]
 """Perception noise: position sigma [m], rotation sigma [rad]."""
 
 
-def _literal(text: str) -> Any:
-    """``text`` read by the language's literal entry point, so units and signs work as in a
-    model and nothing but one expression can be written."""
+@contextmanager
+def _refusals() -> Iterator[None]:
+    """The literal service's refusals as run errors, in its words."""
     try:
-        return parse_literal(text, "<value>")
-    except (SyntaxProblem, RecursionError):
-        raise RunError(f"'{text}' is not a literal value") from None
+        yield
+    except literals.LiteralError as error:
+        raise RunError(str(error)) from None
+
+
+def _literal(text: str) -> ast.Expression:
+    with _refusals():
+        return literals.read(text)
 
 
 def _dimension(quantity: ast.Quantity) -> Dimension:
-    """The parser keeps an unknown unit's number as it is, so a typo must fail here."""
-    try:
-        return lookup(quantity.unit).dimension
-    except UnitError as error:
-        hint = f" (did you mean {' or '.join(error.suggestions)}?)" if error.suggestions else ""
-        raise RunError(f"'{quantity.text}': {error}{hint}") from None
+    with _refusals():
+        return literals.dimension(quantity)
 
 
 def parse_value(text: str) -> Any:
     """A ``--param`` value as a LightRocks literal: ``12mm``, ``0.32 Nm``, ``true``, ``"a"``."""
-    value = _literal(text)
-    negative = isinstance(value, ast.Unary) and value.operator == "-"
-    literal = value.operand if negative else value
-    if isinstance(literal, ast.Quantity):
-        _dimension(literal)
-        number = -literal.value if negative else literal.value
-        return int(number) if _integral(literal) else float(number)
-    if isinstance(literal, ast.BooleanLiteral | ast.StringLiteral) and not negative:
-        return literal.value
-    if isinstance(literal, ast.VectorLiteral) and not negative:
-        for element in literal.elements:
-            if isinstance(element, ast.Quantity):
-                _dimension(element)
-        return tuple(e.value for e in literal.elements if isinstance(e, ast.Quantity))
-    raise RunError(f"'{text}' is not a literal value")
-
-
-def _integral(literal: ast.Quantity) -> bool:
-    plain = not literal.unit and not any(c in literal.text for c in ".eE")
-    return plain and float(literal.value).is_integer()
-
-
-def _expected(declared: tuple) -> str:
-    kind, name, dimensions = declared
-    if kind in ("quantity", "integer") and any(dimensions[0]):
-        return f"{name} [{Dimension(dimensions[0])}]"
-    if kind == "vector":
-        return f"{name}, {len(dimensions)} values"
-    return name
+    with _refusals():
+        return literals.plain_value(text)
 
 
 def typed_value(name: str, text: str, declared: tuple) -> Any:
     """``text`` read as a value of the declared parameter type, or a ``RunError`` naming the
-    parameter, what it expects and what was given: a quantity needs its unit, numbers must
-    be finite, an ``Integer`` whole, a vector complete."""
-    kind, _, dimensions = declared
-    if kind == "other":
-        raise RunError(f"--param {name}: a {declared[1]} cannot be given on the command line")
+    parameter, what it expects and what was given."""
+    expects = f"{name} expects {literals.expected(declared)}"
     try:
-        value = _literal(text)
-    except RunError as error:
-        raise RunError(f"--param {name}: {name} expects {_expected(declared)}; {error}") from None
-    wrong = RunError(
-        f"--param {name}={text}: {name} expects {_expected(declared)}, not {_describe(text, value)}"
-    )
-    if kind == "boolean":
-        if not isinstance(value, ast.BooleanLiteral):
-            raise wrong
-        return value.value
-    if kind == "string":
-        if not isinstance(value, ast.StringLiteral):
-            raise wrong
-        return value.value
-    if kind == "vector":
-        if not isinstance(value, ast.VectorLiteral) or len(value.elements) != len(dimensions):
-            raise wrong
-        return tuple(
-            _number(element, Dimension(d), wrong)
-            for element, d in zip(value.elements, dimensions, strict=True)
-        )
-    number = _number(value, Dimension(dimensions[0]), wrong)
-    if kind == "integer":
-        literal = value.operand if isinstance(value, ast.Unary) else value
-        if not _integral(literal):
-            raise wrong
-        return int(number)
-    return number
-
-
-def _number(value: ast.Expression, dimension: Dimension, wrong: RunError) -> float:
-    """An SI number of ``dimension`` from a (possibly negated) quantity literal."""
-    negative = isinstance(value, ast.Unary) and value.operator == "-"
-    literal = value.operand if negative else value
-    if not isinstance(literal, ast.Quantity):
-        raise wrong
-    if literal.unit:
-        if _dimension(literal) != dimension:
-            raise wrong
-    elif not dimension.dimensionless:
-        raise RunError(f"{wrong} (a quantity needs its unit)")
-    number = -literal.value if negative else literal.value
-    if not math.isfinite(number):
-        raise RunError(f"{wrong}: not a finite number")
-    return float(number)
-
-
-def _describe(text: str, value: ast.Expression) -> str:
-    """What ``text`` (parsed as ``value``) is, in the words of an error message."""
-    literal = value.operand if isinstance(value, ast.Unary) else value
-    if isinstance(literal, ast.Quantity):
-        if not literal.unit:
-            return f"the plain number {text}"
-        try:
-            return f"{text} [{_dimension(literal)}]"
-        except RunError:
-            return f"'{text}'"
-    kinds = {
-        ast.BooleanLiteral: "a Boolean",
-        ast.StringLiteral: "a String",
-        ast.VectorLiteral: f"a vector of {len(getattr(literal, 'elements', ()))} values",
-    }
-    return f"{text} ({kinds.get(type(literal), 'an expression')})"
+        return literals.typed_value(text, declared)
+    except literals.NotGivable:
+        raise RunError(
+            f"--param {name}: a {declared[1]} cannot be given on the command line"
+        ) from None
+    except literals.NotALiteral as error:
+        raise RunError(f"--param {name}: {expects}; {error}") from None
+    except literals.WrongValue as error:
+        raise RunError(f"--param {name}={text}: {expects}, not {error}") from None
+    except literals.UnknownUnit as error:
+        raise RunError(str(error)) from None
 
 
 def parse_delay(text: str) -> float:
@@ -187,7 +107,7 @@ def parameters(cls: type, given: Sequence[str]) -> dict[str, Any]:
         for safe in getattr(cls, "PARAMETER_RANGES", {}).get(name, ()):
             breach = safe.breach(value)
             if breach is not None:
-                expected = f"{_expected(declared)} " if declared else ""
+                expected = f"{literals.expected(declared)} " if declared else ""
                 raise RunError(
                     f"--param {name}={text.strip()}: {name} expects {expected}within the "
                     f"safe range of the command it reaches; {breach}"

@@ -131,16 +131,16 @@ def test_values_are_parsed_once_whatever_the_seeds(
 ) -> None:
     """The command line parses each value once into a spec; the seeds' workers get the
     parsed spec (and could not parse here: the parser is counted in this process)."""
-    from lightrocks.app import values
+    from lightrocks.languages.lightrocks import literals
 
     read: list[str] = []
-    real = values.parse_literal
+    real = literals.parse_literal
 
     def counted(text: str, shown: str):
         read.append(text)
         return real(text, shown)
 
-    monkeypatch.setattr(values, "parse_literal", counted)
+    monkeypatch.setattr(literals, "parse_literal", counted)
     arguments = ["run", str(SCREW_TASK), "--path", str(EXAMPLES), "--adapter", "dryrun"]
     arguments += ["--script", str(SCREWED), "--param", "depth=12 mm", "--seeds", "3"]
     assert main([*arguments, "--workers", "1"]) == 0, capsys.readouterr()
@@ -151,8 +151,9 @@ def test_a_parsed_spec_runs_without_reading_any_value(monkeypatch: pytest.Monkey
     """What a worker does with a pickled spec: run it, reading no user text."""
     import pickle
 
-    from lightrocks.app import pipeline, values
+    from lightrocks.app import pipeline
     from lightrocks.app.script import read_script
+    from lightrocks.languages.lightrocks import literals
 
     cls = load_component(SCREW_TASK, [EXAMPLES])
     spec = pipeline.spec_for(
@@ -162,6 +163,6 @@ def test_a_parsed_spec_runs_without_reading_any_value(monkeypatch: pytest.Monkey
     def refuse(text: str, shown: str) -> None:
         raise AssertionError(f"a run read '{text}' again")
 
-    monkeypatch.setattr(values, "parse_literal", refuse)
+    monkeypatch.setattr(literals, "parse_literal", refuse)
     result = pipeline.run(pickle.loads(pickle.dumps(spec.for_seed(4))))
     assert (result.seed, result.outcome, result.success) == (4, "screwed", True)
