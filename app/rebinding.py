@@ -21,7 +21,7 @@ from lightrocks.app.robots import RobotChoice
 from lightrocks.languages.domain.interface import differences, interface
 from lightrocks.languages.domain.types import Types
 from lightrocks.metamodel import ast
-from lightrocks.workbench.check import CheckContext, all_cocos, load
+from lightrocks.workbench.check import CheckContext, load, run_checks
 from lightrocks.workbench.workspace import Loaded, Symbol, Workspace
 
 ROBOT_SLOT = "robot"
@@ -78,8 +78,7 @@ def rebinding(model: Path, search_path: Sequence[Path], robot: RobotChoice) -> R
 def check_rebound(model: Path, search_path: Sequence[Path], rebound: Rebinding) -> CheckContext:
     """Every CoCo on ``model`` with the re-bound cell in place of its file."""
     context = load([model], list(search_path), unchanged={rebound.cell.path: rebound.cell})
-    for coco in all_cocos():
-        context.diagnostics.extend(coco.run(context))
+    run_checks(context)
     return context
 
 

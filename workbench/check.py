@@ -1,6 +1,7 @@
 """A check run: load the given models and what they import, then run every CoCo.
 
-A check of a workspace whose reads all still hold is answered by the findings cache
+Analyses that several CoCos share are passes (:mod:`lightrocks.workbench.passes`), computed
+once per run. A check of a workspace whose reads all still hold is answered by the findings cache
 (:mod:`lightrocks.workbench.checkcache`) instead of running again."""
 
 from __future__ import annotations
@@ -9,31 +10,62 @@ import gc
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TypeVar, cast
 
 from lightrocks.workbench import checkcache
-from lightrocks.workbench.cocos import CoCo
+from lightrocks.workbench.cocos import CoCo, Code
 from lightrocks.workbench.diagnostics import Diagnostics
 from lightrocks.workbench.extensions import language_extensions
 from lightrocks.workbench.languages import extensions, languages
 from lightrocks.workbench.modelpath import ModelPath, model_files, root_for
+from lightrocks.workbench.passes import Pass, report
 from lightrocks.workbench.workspace import Loaded, Workspace
+
+P = TypeVar("P", bound=Pass)
 
 
 @dataclass
 class CheckContext:
-    """What CoCos see: the workspace, the findings so far, and a cache for shared analyses."""
+    """What CoCos see: the workspace, the findings so far, and the passes of this run."""
 
     workspace: Workspace
     diagnostics: Diagnostics
-    cache: dict[str, Any] = field(default_factory=dict)
+    _results: dict[type[Pass], Pass] = field(default_factory=dict, repr=False)
+
+    def result(self, kind: type[P]) -> P:
+        """The pass ``kind`` of this run, computed the first time it is asked for."""
+        if kind not in self._results:
+            self._results[kind] = kind(self)
+        return cast(P, self._results[kind])
 
 
-def all_cocos() -> list[CoCo]:
-    """Every CoCo of every registered language and language extension, ordered by code."""
-    found = [c for lang in (*languages(), *language_extensions()) for c in lang.cocos]
+def all_cocos() -> list[Code]:
+    """Every code a check reports, ordered by code: each CoCo and each code a pass declares,
+    of every registered language and language extension."""
+    codes = [code for check in _checks() for code in _codes(check)]
+    return sorted(codes, key=lambda c: c.code)
+
+
+def run_checks(context: CheckContext) -> None:
+    """Run every CoCo and every pass that reports codes; their findings go to
+    ``context.diagnostics``."""
+    for check in _checks():
+        if isinstance(check, CoCo):
+            context.diagnostics.extend(check.run(context))
+        else:
+            context.diagnostics.extend(report(check, context))
+
+
+def _checks() -> list[CoCo | type[Pass]]:
+    """The CoCos and passes of every language and extension, ordered by (first) code."""
+    registered = (*languages(), *language_extensions())
+    found = [c for lang in registered for c in (*lang.cocos, *lang.passes)]
     unique = {id(c): c for c in found}
-    return sorted(unique.values(), key=lambda c: c.code)
+    return sorted(unique.values(), key=lambda c: min(code.code for code in _codes(c)))
+
+
+def _codes(check: CoCo | type[Pass]) -> tuple[Code, ...]:
+    return (check,) if isinstance(check, CoCo) else check.codes
 
 
 def load(
@@ -89,8 +121,7 @@ def check(
     context = load(paths, model_path, texts, only_given, unchanged)
     gc.freeze()  # the loaded models live to the end: keep the collector from rescanning them
     try:
-        for coco in all_cocos():
-            context.diagnostics.extend(coco.run(context))
+        run_checks(context)
     finally:
         gc.unfreeze()
     workspace = context.workspace

@@ -1,24 +1,33 @@
 """The context-condition framework: small checks, each with a stable code and severity.
 
 A CoCo is a function that inspects a loaded model set and reports findings. Languages
-declare their CoCos with :func:`coco`; the checker runs all of them and collects every
-finding, so one run reports everything that is wrong.
+declare their CoCos with :func:`coco` and hand them to the registry with :func:`cocos_in`,
+which collects them from the modules they are written in; the checker runs all of them and
+collects every finding, so one run reports everything that is wrong. Findings that one
+analysis makes for several codes come from a pass (:mod:`lightrocks.workbench.passes`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from types import ModuleType
 from typing import Any
 
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
 
 @dataclass(frozen=True)
-class CoCo:
+class Code:
+    """A code that checks report, with the severity of its findings and what it demands."""
+
     code: str
     severity: Severity
     summary: str
+
+
+@dataclass(frozen=True)
+class CoCo(Code):
     check: Callable[[Any], Iterable[tuple[Any, str, str]]]
 
     def run(self, model: Any) -> Iterable[Diagnostic]:
@@ -34,3 +43,14 @@ def coco(code: str, severity: Severity, summary: str) -> Callable[[Callable], Co
         return CoCo(code, severity, summary, check)
 
     return wrap
+
+
+def cocos_in(*modules: ModuleType) -> tuple[CoCo, ...]:
+    """The CoCos written in ``modules``, in the order they are defined there: a CoCo a
+    module imports from another belongs to that other one."""
+    return tuple(
+        found
+        for module in modules
+        for found in vars(module).values()
+        if isinstance(found, CoCo) and found.check.__module__ == module.__name__
+    )

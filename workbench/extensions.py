@@ -18,6 +18,7 @@ from typing import Any
 
 from lightrocks.metamodel.grammar import GrammarExtension
 from lightrocks.workbench.cocos import CoCo
+from lightrocks.workbench.passes import Pass
 
 Build = Callable[[Any, Any], Any]
 """``(converter, textx node) -> AST node``; the converter offers ``position``, ``convert``…"""
@@ -41,6 +42,8 @@ class LanguageExtension:
     symbols: Mapping[type, str] = field(default_factory=dict)
     """Element types that declare a name, with the kind editors show (``{Requirement:
     "requirement"}``): outline, navigation, rename and completion then know the names."""
+    passes: Sequence[type[Pass]] = ()
+    """Passes whose findings are reported under the codes they declare."""
 
 
 @cache

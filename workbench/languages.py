@@ -2,7 +2,7 @@
 
 A language says which file extensions it reads, how to parse and print them, which
 declarations a parsed unit contributes to the symbol table, and which context conditions
-(CoCos) check it. A separate package adds a language by declaring an entry point.
+(CoCos) and passes check it. A separate package adds a language by declaring an entry point.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from importlib.metadata import entry_points
 from typing import Any
 
 from lightrocks.workbench.cocos import CoCo
+from lightrocks.workbench.passes import Pass
 
 
 @dataclass(frozen=True)
@@ -25,6 +26,8 @@ class Language:
     declarations: Callable[[Any], Iterable[tuple[str, Any]]]
     cocos: Sequence[CoCo] = field(default_factory=tuple)
     description: str = ""
+    passes: Sequence[type[Pass]] = ()
+    """Passes whose findings are reported under the codes they declare."""
 
 
 @cache

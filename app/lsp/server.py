@@ -22,6 +22,7 @@ from lightrocks.app.lsp.hover import hover as describe
 from lightrocks.app.lsp.index import Index
 from lightrocks.app.lsp.stdio import serve
 from lightrocks.app.lsp.text import Text
+from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import parsecache
@@ -62,8 +63,7 @@ class LightRocksServer(LanguageServer):
             findings = self.checker.update({path: text})
         if self.checker.context is not None:
             context = self.checker.context
-            analysis = context.cache.get("lightrocks")
-            inferred = analysis.typing.inferred if analysis is not None else None
+            inferred = analysis(context).typing.inferred
             self.index.update(context.workspace, self.text, inferred)
         by_file: dict[Path, list[Diagnostic]] = {}
         for finding in findings:

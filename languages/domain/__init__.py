@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from lightrocks.languages.domain.cocos import COCOS
+from lightrocks.languages.domain import cocos
 from lightrocks.languages.domain.syntax import parse_domain
 from lightrocks.metamodel import ast
+from lightrocks.workbench.cocos import cocos_in
 from lightrocks.workbench.languages import Language
 
 
@@ -26,6 +27,6 @@ LANGUAGE = Language(
     parse=parse_domain,
     format=_format,
     declarations=_declarations,
-    cocos=COCOS,
+    cocos=cocos_in(cocos),
     description="robot domain interfaces: value types, devices, cells",
 )

@@ -19,8 +19,10 @@ from lightrocks.languages.domain.types import (
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import beyond_a_real, overflow
 from lightrocks.metamodel.units import UnitError, lookup
+from lightrocks.workbench.check import CheckContext
 from lightrocks.workbench.cocos import coco
 from lightrocks.workbench.diagnostics import Severity, did_you_mean
+from lightrocks.workbench.passes import Pass
 from lightrocks.workbench.workspace import Loaded
 
 Finding = tuple[ast.Position, str, str]
@@ -32,8 +34,16 @@ def _domain_units(context: object) -> Iterator[Loaded]:
             yield loaded
 
 
-def _types(context: object) -> Types:
-    return context.cache.setdefault("domain-types", Types(context.workspace))
+class DomainTypes(Pass):
+    """The types of this run's domain declarations, resolved once for every CoCo."""
+
+    def __init__(self, context: CheckContext) -> None:
+        super().__init__(context)
+        self.types = Types(context.workspace)
+
+
+def _types(context: CheckContext) -> Types:
+    return context.result(DomainTypes).types
 
 
 def _typed_members(unit: ast.DomainUnit) -> Iterator[tuple[str, ast.Position]]:
@@ -170,12 +180,3 @@ def _fits(declared: QuantityT | VectorT, actual: QuantityT | VectorT) -> bool:
     if isinstance(declared, VectorT) and isinstance(actual, QuantityT):
         return all(compatible(e, actual) for e in declared.elements)
     return compatible(declared, actual)
-
-
-COCOS = (
-    domain_types_resolve,
-    unique_members,
-    type_units_known,
-    command_defaults_fit,
-    command_defaults_safe,
-)

@@ -4,10 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from lightrocks.languages.lightrocks.cocos import COCOS
-from lightrocks.languages.lightrocks.cocos_behaviour import BEHAVIOUR_COCOS
-from lightrocks.languages.lightrocks.cocos_safety import SAFETY_COCOS
-from lightrocks.languages.lightrocks.cocos_silent import SILENT_COCOS
+from lightrocks.languages.lightrocks.cocos import COCOS, PASSES
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
 from lightrocks.workbench.languages import Language
@@ -29,6 +26,7 @@ LANGUAGE = Language(
     parse=parse_statechart,
     format=_format,
     declarations=_declarations,
-    cocos=COCOS + SAFETY_COCOS + BEHAVIOUR_COCOS + SILENT_COCOS,
+    cocos=COCOS,
+    passes=PASSES,
     description="tasks, skills and elemental actions as UML/P statecharts",
 )

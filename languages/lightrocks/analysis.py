@@ -2,17 +2,19 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
 
 from lightrocks.languages.lightrocks.model import ModelSet
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.workbench.check import CheckContext
+from lightrocks.workbench.passes import Pass
 from lightrocks.workbench.workspace import Workspace
 
 
-@dataclass
-class Analysis:
+class Analysis(Pass):
+    """The components of the run resolved, and typed, on first use; reports no codes itself
+    (the typing findings are :class:`~.cocos_typing.TypingPass`'s)."""
+
     context: CheckContext
 
     @property
@@ -30,4 +32,4 @@ class Analysis:
 
 def analysis(context: CheckContext) -> Analysis:
     """The analysis of this run, created by the first CoCo that asks for it."""
-    return context.cache.setdefault("lightrocks", Analysis(context))
+    return context.result(Analysis)

@@ -122,12 +122,3 @@ def _breach(value: ast.Expression, safe: Range, what: str) -> Iterator[Finding]:
     breach = safe.breach(value)
     if breach is not None:
         yield value.position, f"{what} reaches {breach}", ""
-
-
-SAFETY_COCOS = (
-    timeout_is_duration,
-    scene_is_name,
-    action_can_end,
-    guard_in_place,
-    safe_through_parameters,
-)

@@ -123,6 +123,3 @@ def _misplaced(
 def _qualified(unit: ast.StatechartUnit) -> str:
     name = unit.statechart.name
     return f"{unit.package}.{name}" if unit.package else name
-
-
-SILENT_COCOS = (ambiguous_imports, stereotype_has_effect)

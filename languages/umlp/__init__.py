@@ -15,13 +15,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from lightrocks.languages.umlp.cocos import COCOS
+from lightrocks.languages.umlp import cocos
 from lightrocks.languages.umlp.nodes import SCArtifact
 from lightrocks.languages.umlp.syntax import parse_sc
 from lightrocks.metamodel.ast import Position
 from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.workbench.cocos import cocos_in
 from lightrocks.workbench.diagnostics import Diagnostics
 from lightrocks.workbench.languages import Language
+
+COCOS = cocos_in(cocos)
 
 
 def _declarations(unit: SCArtifact) -> list[tuple[str, Any]]:
@@ -65,7 +68,6 @@ class SCCheck:
 
     workspace: _Units
     diagnostics: Diagnostics
-    cache: dict[str, Any] = field(default_factory=dict)
     units: dict[Path, SCArtifact] = field(default_factory=dict)
 
 

@@ -318,23 +318,3 @@ def names_from_context(context: object) -> Iterator[Finding]:
                     "so this condition is not type-checked",
                     "UML/P takes it from the class the chart describes, which is not read here",
                 )
-
-
-COCOS = (
-    unique_states,
-    invariant_valid,
-    at_least_one_initial_state,
-    transition_source_exists,
-    transition_target_exists,
-    capital_state_names,
-    sc_file_extension,
-    package_corresponds_to_folders,
-    sc_name_is_artifact_name,
-    non_capital_param_names,
-    non_capital_event_names,
-    transition_preconditions_are_boolean,
-    ante_blocks_only_for_initial_states,
-    max_one_initial_state,
-    no_type_as_value,
-    names_from_context,
-)

@@ -10,6 +10,7 @@ from lsprotocol import types as lsp
 from lightrocks.app.lsp.completion import completions
 from lightrocks.app.lsp.index import FileIndex, Index
 from lightrocks.app.lsp.text import Text
+from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench.incremental import IncrementalCheck
 
 CHART = """\
@@ -97,7 +98,7 @@ def test_hover_types_the_innermost_expression_under_the_cursor(tmp_path: Path) -
     assert checked.full() == []
     text = Text(source)
     index = Index()
-    inferred = checked.context.cache["lightrocks"].typing.inferred
+    inferred = analysis(checked.context).typing.inferred
     index.update(checked.context.workspace, lambda p: Text(p.read_text()), inferred)
     file = index.files[path.resolve()]
     line = next(i for i, row in enumerate(text.lines) if "Off -> On [" in row)
