@@ -23,9 +23,9 @@ import networkx as nx
 
 from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.diagnostics import Diagnostic, Diagnostics
-from lightrocks.workbench.languages import extensions
-from lightrocks.workbench.modelpath import LIBRARY, ModelPath
-from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Workspace, shown_name
+from lightrocks.workbench.languages import extensions, implicit_packages, libraries
+from lightrocks.workbench.modelpath import ModelPath
+from lightrocks.workbench.workspace import Loaded, Workspace, shown_name
 
 
 class IncrementalCheck:
@@ -48,7 +48,7 @@ class IncrementalCheck:
         """Check everything and rebuild the dependency graph."""
         self.context = check(self.paths, self.model_path, self.texts)
         workspace = self.context.workspace
-        self.model_path = [root for root in workspace.model_path.roots if root != LIBRARY]
+        self.model_path = [root for root in workspace.model_path.roots if root not in libraries()]
         self.package_files = cache(partial(_package_files, workspace))
         self.graph = dependency_graph(workspace, self.package_files)
         self.uses = nx.DiGraph()
@@ -140,7 +140,7 @@ def dependencies(
 ) -> set[Path]:
     """The files of every package a file's names may resolve through."""
     loaded = workspace.files.get(path)
-    packages = set(IMPLICIT_PACKAGES) | set(workspace.model_path.packages_of(path))
+    packages = set(implicit_packages()) | set(workspace.model_path.packages_of(path))
     if isinstance(loaded, Loaded):
         packages.add(loaded.package)
         for imported in loaded.unit.imports:

@@ -3,6 +3,8 @@
 A language says which file extensions it reads, how to parse and print them, which
 declarations a parsed unit contributes to the symbol table, and which context conditions
 (CoCos) and passes check it. A separate package adds a language by declaring an entry point.
+A language may also bring a library (a folder of models on every model path) and name the
+packages whose declarations every file sees without an import: the kernel asks for both.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from importlib.metadata import entry_points
+from pathlib import Path
 from typing import Any
 
 from lightrocks.workbench.cocos import CoCo
@@ -26,6 +29,10 @@ class Language:
     declarations: Callable[[Any], Iterable[tuple[str, Any]]]
     cocos: Sequence[CoCo] = field(default_factory=tuple)
     description: str = ""
+    library: Path | None = None
+    """A folder of models on every model path, after the user's folders."""
+    implicit_packages: tuple[str, ...] = ()
+    """Packages whose declarations every file sees without importing them."""
     passes: Sequence[type[Pass]] = ()
     """Passes whose findings are reported under the codes they declare."""
 
@@ -43,3 +50,15 @@ def language_for(extension: str) -> Language | None:
 
 def extensions() -> tuple[str, ...]:
     return tuple(ext for lang in languages() for ext in lang.extensions)
+
+
+@cache
+def libraries() -> tuple[Path, ...]:
+    """The library folders of the registered languages, resolved, in registry order."""
+    return tuple(lang.library.resolve() for lang in languages() if lang.library is not None)
+
+
+@cache
+def implicit_packages() -> tuple[str, ...]:
+    """The packages every file sees without an import, of every registered language."""
+    return tuple(package for lang in languages() for package in lang.implicit_packages)

@@ -1,7 +1,8 @@
 """The model path: folders whose sub-folders are packages, MontiCore style.
 
 A model ``a.b.C`` lives in ``<root>/a/b/C.<ext>``; declarations of package ``a.b`` may also
-live in any file of ``<root>/a/b/`` whose language holds several declarations per file.
+live in any file of ``<root>/a/b/`` whose language holds several declarations per file. The
+registered languages' libraries follow the user's roots on every model path.
 """
 
 from __future__ import annotations
@@ -9,15 +10,15 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-LIBRARY = Path(__file__).resolve().parent.parent / "languages" / "domain" / "library"
+from lightrocks.workbench.languages import libraries
 
 
 class ModelPath:
     def __init__(self, roots: Iterable[Path]) -> None:
-        unique: dict[Path, None] = {}
-        for root in [*roots, LIBRARY]:
-            unique[root.resolve()] = None
-        self.roots = list(unique)
+        unique = dict.fromkeys(root.resolve() for root in roots)
+        added = [library for library in libraries() if library not in unique]
+        self.roots = [*unique, *added]
+        self._libraries = len(added)  # the last roots: add_root puts a root before them
         self._packages: dict[Path, list[str]] = {}  # of each file asked, while roots stay
 
     def add_root(self, root: Path) -> None:
@@ -27,7 +28,7 @@ class ModelPath:
             return
         root = root.resolve()
         if root not in self.roots:
-            self.roots.insert(len(self.roots) - 1, root)
+            self.roots.insert(len(self.roots) - self._libraries, root)
             self._packages.clear()
 
     def package_folders(self, package: str) -> Iterator[Path]:
@@ -49,6 +50,11 @@ class ModelPath:
                 if real.is_relative_to(root)
             ]
         return found
+
+
+def in_library(file: Path) -> bool:
+    """Whether a (resolved) file belongs to a registered language's library."""
+    return any(file.is_relative_to(library) for library in libraries())
 
 
 def root_for(file: Path, package: str) -> Path:

@@ -16,11 +16,9 @@ from lightrocks.metamodel.ast import Import, Position
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench import parsecache
 from lightrocks.workbench.diagnostics import Diagnostics, did_you_mean
-from lightrocks.workbench.languages import Language, extensions, language_for
+from lightrocks.workbench.languages import Language, extensions, implicit_packages, language_for
 from lightrocks.workbench.modelpath import ModelPath
 from lightrocks.workbench.reads import Reads, TooLarge, listing, raw
-
-IMPLICIT_PACKAGES = ("lightrocks",)
 
 
 @dataclass
@@ -185,12 +183,13 @@ class Workspace:
         return symbol
 
     def scope(self, loaded: Loaded) -> dict[str, Symbol]:
-        """Simple names visible in a file: implicit library, own package, then its imports."""
+        """Simple names visible in a file: the languages' implicit packages, its own package,
+        then its imports."""
         scope = self._scopes.get(loaded.path)
         if scope is not None:
             return scope
         scope = {}
-        for package in (*IMPLICIT_PACKAGES, loaded.package):
+        for package in (*implicit_packages(), loaded.package):
             scope.update(self.load_package(package))
         for imported in loaded.unit.imports:
             scope.update(self._import(imported))

@@ -15,7 +15,7 @@ from lightrocks.generators.python.names import identifier
 from lightrocks.generators.python.values import python_type, stereotype_value, zero_value
 from lightrocks.generators.python.views import docstring_text
 from lightrocks.metamodel import ast
-from lightrocks.workbench.modelpath import LIBRARY
+from lightrocks.workbench.modelpath import in_library
 from lightrocks.workbench.workspace import Symbol
 
 
@@ -26,7 +26,7 @@ def domain_module(builder: Builder, environment) -> str | None:
     devices, cells = [], []
     for symbol in symbols:
         if isinstance(symbol.node, ast.Device):
-            if symbol.qualified_name in used or not symbol.loaded.path.is_relative_to(LIBRARY):
+            if symbol.qualified_name in used or not in_library(symbol.loaded.path):
                 devices.append(_device_view(builder, symbol))
         elif isinstance(symbol.node, ast.Cell):
             cells.append(_cell_view(builder, symbol))

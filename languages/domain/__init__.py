@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 from lightrocks.languages.domain import cocos
@@ -21,6 +22,9 @@ def _format(text: str, file: str) -> str:
     return format_domain_text(text, file)
 
 
+LIBRARY = Path(__file__).resolve().parent / "library"
+"""The device library and the quantity types: package ``lightrocks``, seen by every file."""
+
 LANGUAGE = Language(
     name="domain",
     extensions=(".lrd",),
@@ -29,4 +33,6 @@ LANGUAGE = Language(
     declarations=_declarations,
     cocos=cocos_in(cocos),
     description="robot domain interfaces: value types, devices, cells",
+    library=LIBRARY,
+    implicit_packages=("lightrocks",),
 )

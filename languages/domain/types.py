@@ -10,7 +10,8 @@ from dataclasses import dataclass
 
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import ANGLE, LENGTH, ONE, Dimension, UnitError, lookup
-from lightrocks.workbench.workspace import IMPLICIT_PACKAGES, Loaded, Symbol, Workspace
+from lightrocks.workbench.languages import implicit_packages
+from lightrocks.workbench.workspace import Loaded, Symbol, Workspace
 
 
 @dataclass(frozen=True)
@@ -155,7 +156,7 @@ class Types:
         type of that dimension (``Length`` for metres), else ``quantity``."""
         if self._named is None:
             self._named = {}
-            for package in IMPLICIT_PACKAGES:
+            for package in implicit_packages():
                 for symbol in self.workspace.load_package(package).values():
                     kind = self._type_of(symbol)
                     if isinstance(kind, QuantityT):

@@ -6,12 +6,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from lightrocks.languages.domain import LIBRARY
 from lightrocks.languages.domain.interface import Interface, differences, interface
 from lightrocks.languages.domain.ranges import command_ranges
 from lightrocks.languages.domain.types import Types
 from lightrocks.metamodel.constants import fold
 from lightrocks.workbench.check import CheckContext, check
-from lightrocks.workbench.modelpath import LIBRARY
 
 ROBOTS = LIBRARY / "lightrocks" / "robots"
 
