@@ -1,4 +1,5 @@
-"""The layer rules of DESIGN §2, proven by walking every import of every module.
+"""The floors of docs/architecture.md and what each may import, proven by walking every
+import of every module.
 
 A module may import only the layers below it; the workbench kernel is below the languages
 and generators, the application (``lightrocks.app``, a floor of its own) above everything,
