@@ -33,18 +33,16 @@ def hover(index: Index, occurrence: Occurrence, workspace: Workspace) -> lsp.Hov
 def quantity_hover(text: Text, position: lsp.Position) -> lsp.Hover | None:
     """A literal with a unit under the cursor: its value in SI and its dimension."""
     line = text.lines[position.line] if position.line < len(text.lines) else ""
+    column = text.column(position.line, position.character)
     for match in QUANTITY.finditer(line):
-        if match.start() <= position.character <= match.end():
+        if match.start() <= column <= match.end():
             try:
                 info = lookup(match.group(2))
             except UnitError:
                 return None
             si = float(match.group(1)) * info.factor
             shown = f"{match.group()} = {si:g} [{info.dimension}]"
-            where = lsp.Range(
-                lsp.Position(position.line, match.start()),
-                lsp.Position(position.line, match.end()),
-            )
+            where = text.range(*(text.starts[position.line] + at for at in match.span()))
             return lsp.Hover(lsp.MarkupContent(lsp.MarkupKind.Markdown, f"`{shown}`"), where)
     return None
 

@@ -125,8 +125,7 @@ class _Builder:
     # -- keys -----------------------------------------------------------------------------
 
     def key(self, loaded: Loaded, node: Any, name: str) -> tuple[Key, lsp.Range]:
-        where = node.position
-        found = self.text_of(loaded.path).name_range(where.line, where.column, name, True)
+        found = self.text_of(loaded.path).name_in(node.position, name, True)
         return (loaded.path, found.start.line, found.start.character), found
 
     def declare(self, node: Any, kind: str, name: str | None = None) -> Key:
@@ -146,7 +145,7 @@ class _Builder:
     def refer(self, position: ast.Position, name: str, kind: str, key: Key | None) -> None:
         if key is None or position.line <= 0:
             return
-        found = self.text_of(self.loaded.path).name_range(position.line, position.column, name)
+        found = self.text_of(self.loaded.path).name_in(position, name)
         last = name.rpartition(".")[2]
         self.index.occurrences.append(Occurrence(self.loaded.path, found, last, kind, key))
 
@@ -260,9 +259,10 @@ class _Builder:
                 target = self.stereotype_target(element.stereotypes, "import")
                 if target is not None:
                     imported[element.name] = target
-        block = self.text_of(self.loaded.path).block(owner.line, owner.column)
+        block = self.text_of(self.loaded.path).span(owner)
         seen = frozenset(n for n, (_, kind) in states.items() if state_kind(kind) == "state")
-        self.index.scopes.append((block, seen))
+        if block is not None:
+            self.index.scopes.append((block, seen))
         for element in elements:
             if isinstance(element, ast.Parameter):
                 self.refer_symbol(element.position, element.type)
@@ -342,12 +342,8 @@ class _Builder:
                 self.refer(found.position, found.name, kind, key)
             elif isinstance(found, ast.Member) and isinstance(found.target, ast.Name):
                 member = self.members.get(found.target.name, {}).get(found.name)
-                if member is not None:
-                    where = found.target.position
-                    after = ast.Position(
-                        where.file, where.line, where.column + len(found.target.name)
-                    )
-                    self.refer(after, found.name, member[1], member[0])
+                if member is not None:  # the member's own span: its dot and name
+                    self.refer(found.position, found.name, member[1], member[0])
             elif isinstance(found, ast.Call) and isinstance(found.function, ast.Member):
                 self.command_arguments(found)
 

@@ -134,10 +134,13 @@ def document_symbols(file: FileIndex) -> list[lsp.DocumentSymbol]:
 def semantic_tokens(file: FileIndex | None, text: Text) -> lsp.SemanticTokens:
     """Names coloured by what they declare or refer to; keywords where no name is."""
     spans: dict[tuple[int, int], tuple[int, int]] = {}
+    keyword = TOKEN_TYPES.index("keyword")
     for number, line in enumerate(text.lines):
         for match in KEYWORD.finditer(line):
             if not _in_comment_or_string(line, match.start()):
-                spans[(number, match.start())] = (len(match.group()), TOKEN_TYPES.index("keyword"))
+                found = text.range(*(text.starts[number] + at for at in match.span()))
+                length = found.end.character - found.start.character
+                spans[(number, found.start.character)] = (length, keyword)
     for occurrence in file.occurrences if file else ():
         start, end = occurrence.range.start, occurrence.range.end
         if start.line == end.line and end.character > start.character:

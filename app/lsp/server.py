@@ -39,14 +39,14 @@ class LightRocksServer(LanguageServer):
         self.published: dict[Path, list[Diagnostic]] = {}
 
     def text(self, path: Path) -> Text:
-        """An open document's buffer, else the file on disk."""
-        document = self.workspace.text_documents.get(from_fs_path(str(path)))
-        if document is not None:
-            return Text(document.source)
+        """An open document's buffer, else the file on disk, in the position encoding
+        negotiated with the client."""
+        document = self.workspace.get_text_document(from_fs_path(str(path)))
         try:
-            return Text(path.read_text(encoding="utf-8"))
+            source = document.source
         except (OSError, UnicodeDecodeError):
-            return Text("")
+            source = ""
+        return Text(source, document.position_codec)
 
     def recheck(self, path: Path, text: str | None) -> None:
         """Re-check after an edit and publish the findings of every file that changed."""
@@ -190,7 +190,8 @@ def semantic_tokens(ls: LightRocksServer, params: lsp.SemanticTokensParams) -> l
 )
 def code_actions(ls: LightRocksServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction]:
     uri = params.text_document.uri
-    return diagnostics.quick_fixes(uri, params.context.diagnostics, _unit(ls, _path(uri)))
+    path = _path(uri)
+    return diagnostics.quick_fixes(uri, params.context.diagnostics, ls.text(path), _unit(ls, path))
 
 
 def _unit(ls: LightRocksServer, path: Path) -> ast.StatechartUnit | None:

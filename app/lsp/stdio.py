@@ -1,27 +1,28 @@
-"""The language server on stdin and stdout: every request gets an answer.
+"""The language server on stdin and stdout, on pygls's own transport, with every request
+answered.
 
-pygls's own reader stays silent for good after a frame with a broken header, and answers no
-request whose body it cannot read. Here frames are read by :mod:`.framing`; what cannot be
-served is answered with a JSON-RPC error (with the request's id where it can be found, else
-null), and everything else goes to pygls as before.
+pygls's reader stays silent for good after a frame with a broken header, and answers no
+request whose body it cannot read. So pygls reads stdin through a :class:`Screen`: frames are
+read by :mod:`.framing`, what can be served is handed on as a well-formed frame, and what
+cannot is answered here with a JSON-RPC error (with the request's id where it can be found,
+else null). Both write through one :class:`Output`, a whole message at a time.
 """
 
 from __future__ import annotations
 
-import asyncio
 import json
 import re
 import sys
 import threading
-from typing import Any
+from typing import Any, BinaryIO
 
-from lsprotocol.types import EXIT, ResponseError, ResponseErrorMessage
-from pygls.io_ import StdoutWriter
+from lsprotocol.types import EXIT, SHUTDOWN
 from pygls.lsp.server import LanguageServer
+from pygls.protocol import JsonRPCProtocol
 
 from lightrocks.app.lsp.framing import Frame, FrameReader
 
-PARSE_ERROR, INVALID_REQUEST, INVALID_PARAMS, INTERNAL_ERROR = -32700, -32600, -32602, -32603
+PARSE_ERROR, INVALID_REQUEST, INVALID_PARAMS = -32700, -32600, -32602
 
 _ID = re.compile(rb'"id"\s*:\s*(-?\d{1,18}|"(?:[^"\\]|\\.){0,256}")')
 """A request's id in a body that is no JSON: found where clients write it, before params."""
@@ -29,61 +30,106 @@ _ID = re.compile(rb'"id"\s*:\s*(-?\d{1,18}|"(?:[^"\\]|\\.){0,256}")')
 
 def serve(server: LanguageServer) -> None:
     """Serve on stdin and stdout until the stream ends or the client says ``exit``."""
-    server._stop_event = threading.Event()
-    server.protocol.set_writer(StdoutWriter(sys.stdout.buffer))
-    reader = FrameReader(sys.stdin.buffer)
-    try:
-        asyncio.run(_loop(server, reader))
-    except BrokenPipeError:
-        pass  # the client is gone
-    except (KeyboardInterrupt, SystemExit):
-        pass
-    finally:
-        server.shutdown()
+    output = Output(sys.stdout.buffer)
+    server.start_io(Screen(sys.stdin.buffer, output, server.protocol), output)  # type: ignore[arg-type]
 
 
-async def _loop(server: LanguageServer, reader: FrameReader) -> None:
-    loop = asyncio.get_running_loop()
-    while not server._stop_event.is_set():
-        frame = await loop.run_in_executor(server.thread_pool, reader.next)
-        if frame is None:
-            return
-        dispatch(server, frame)
+class Output:
+    """The client's stream, shared by pygls and the screen: each write is one whole message,
+    flushed at once."""
+
+    def __init__(self, stream: BinaryIO) -> None:
+        self._stream = stream
+        self._lock = threading.Lock()
+
+    def write(self, data: bytes) -> None:
+        with self._lock:
+            self._stream.write(data)
+            self._stream.flush()
+
+    def flush(self) -> None:
+        """Every write is flushed already."""
+
+    def close(self) -> None:
+        with self._lock:
+            self._stream.close()
 
 
-def dispatch(server: LanguageServer, frame: Frame) -> None:
-    """One frame: handed to pygls, or answered with the error that says why it cannot be."""
-    if frame.skipped:  # the body of a frame with a broken header: answer its request
-        ident = _found_id(frame.skipped)
-        if ident is not None:
-            _answer(server, ident, PARSE_ERROR, "the header of this message was broken")
-        return
-    if frame.problem:
-        _answer(server, None, PARSE_ERROR, f"broken frame: {frame.problem}")
-        return
-    raw, problem = _decoded(frame.body)
-    if problem:
-        _answer(server, _found_id(frame.body), PARSE_ERROR, problem)
-        return
-    request = isinstance(raw, dict) and "method" in raw and "id" in raw
-    ident = raw.get("id") if isinstance(raw, dict) else None
-    if not isinstance(raw, dict) or raw.get("jsonrpc") != "2.0":
-        _answer(server, ident, INVALID_REQUEST, "not a JSON-RPC 2.0 message")
-        return
-    if request and server.protocol._shutdown and raw["method"] != EXIT:
-        _answer(server, ident, INVALID_REQUEST, "the server is shutting down")
-        return
-    try:
-        message = server.protocol.structure_message(raw)
-    except Exception:
-        if request or "method" not in raw:
-            _answer(server, ident, INVALID_PARAMS, f"the message does not fit {raw.get('method')}")
-        return
-    try:
-        server.protocol.handle_message(message)
-    except Exception as error:  # pygls answers a handler's faults; this is its own
-        if request:
-            _answer(server, ident, INTERNAL_ERROR, f"{type(error).__name__}: {error}")
+class Screen:
+    """The stream pygls reads: only frames of JSON-RPC 2.0 messages that fit their method,
+    each framed as pygls expects (``Content-Length: N``, a blank line, N bytes)."""
+
+    def __init__(self, stream: BinaryIO, output: Output, protocol: JsonRPCProtocol) -> None:
+        self._frames = FrameReader(stream)
+        self._output = output
+        self._protocol = protocol
+        self._pending = b""
+        self._shutting_down = False
+
+    def readline(self) -> bytes:
+        if not self._pending:
+            self._pending = self._next()
+        end = self._pending.find(b"\n") + 1 or len(self._pending)
+        line, self._pending = self._pending[:end], self._pending[end:]
+        return line
+
+    def read(self, size: int) -> bytes:
+        data, self._pending = self._pending[:size], self._pending[size:]
+        return data
+
+    def _next(self) -> bytes:
+        """The next frame pygls may read; nothing at the end of the input."""
+        while True:
+            frame = self._frames.next()
+            if frame is None:
+                return b""
+            body = self._served(frame)
+            if body is not None:
+                return b"Content-Length: %d\r\n\r\n" % len(body) + body
+
+    def _served(self, frame: Frame) -> bytes | None:
+        """A frame's body when pygls can serve it; else ``None``, answered with the error
+        that says why it cannot be."""
+        if frame.skipped:  # the body of a frame with a broken header: answer its request
+            ident = _found_id(frame.skipped)
+            if ident is not None:
+                self._answer(ident, PARSE_ERROR, "the header of this message was broken")
+            return None
+        if frame.problem:
+            self._answer(None, PARSE_ERROR, f"broken frame: {frame.problem}")
+            return None
+        raw, problem = _decoded(frame.body)
+        if problem:
+            self._answer(_found_id(frame.body), PARSE_ERROR, problem)
+            return None
+        request = isinstance(raw, dict) and "method" in raw and "id" in raw
+        ident = raw.get("id") if isinstance(raw, dict) else None
+        if not isinstance(raw, dict) or raw.get("jsonrpc") != "2.0":
+            self._answer(ident, INVALID_REQUEST, "not a JSON-RPC 2.0 message")
+            return None
+        if request and self._shutting_down and raw["method"] != EXIT:
+            self._answer(ident, INVALID_REQUEST, "the server is shutting down")
+            return None
+        if "method" in raw:  # a response is matched to its request by pygls alone
+            try:
+                self._protocol.structure_message(raw)
+            except Exception:
+                if request:
+                    method = raw.get("method")
+                    self._answer(ident, INVALID_PARAMS, f"the message does not fit {method}")
+                return None
+        self._shutting_down |= request and raw["method"] == SHUTDOWN
+        return frame.body
+
+    def _answer(self, ident: Any, code: int, message: str) -> None:
+        """An error response; a null id where the request's own is missing or no id at all."""
+        if not isinstance(ident, int | str) or isinstance(ident, bool):
+            ident = None
+        error = {"code": code, "message": message}
+        body = json.dumps({"jsonrpc": "2.0", "id": ident, "error": error}).encode("utf-8")
+        header = f"Content-Length: {len(body)}\r\n"
+        header += "Content-Type: application/vscode-jsonrpc; charset=utf-8\r\n\r\n"
+        self._output.write(header.encode("ascii") + body)
 
 
 def _decoded(body: bytes) -> tuple[Any, str]:
@@ -111,11 +157,3 @@ def _found_id(body: bytes) -> int | str | None:
         return json.loads(found.group(1).decode("utf-8", "replace"))
     except ValueError:
         return None
-
-
-def _answer(server: LanguageServer, ident: Any, code: int, message: str) -> None:
-    """An error response; a null id where the request's own is missing or no id at all."""
-    if not isinstance(ident, int | str) or isinstance(ident, bool):
-        ident = None
-    error = ResponseError(code=code, message=message)
-    server.protocol._send_data(ResponseErrorMessage(id=ident, error=error))

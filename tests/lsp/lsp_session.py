@@ -47,3 +47,10 @@ def cursor(text: str, line_text: str, word: str) -> lsp.Position:
 
 def path_of(uri: str) -> Path:
     return Path(uri.removeprefix("file://")).resolve()
+
+
+async def fixes(client: LanguageClient, uri: str, finding: lsp.Diagnostic) -> list[lsp.CodeAction]:
+    """The code actions offered for one published finding."""
+    context = lsp.CodeActionContext(diagnostics=[finding])
+    params = lsp.CodeActionParams(document(uri), finding.range, context)
+    return await client.text_document_code_action_async(params)

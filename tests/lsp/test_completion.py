@@ -80,10 +80,12 @@ def test_states_of_regions_are_declared_in_the_index(plant) -> None:
     assert {"Idle", "Running", "Shut", "Open", "Half", "Full"} <= referenced
 
 
-def test_a_block_skips_braces_in_comments_and_strings_and_may_be_unclosed() -> None:
-    text = Text('state A { // }\n  x = "}"; state B { }\n}\nstate C {')
-    assert text.block(1, 1) == lsp.Range(lsp.Position(0, 8), lsp.Position(2, 1))
-    assert text.block(4, 1) == lsp.Range(lsp.Position(3, 8), lsp.Position(3, 9))
+def test_a_region_scope_is_its_span_whatever_braces_its_comments_hold(plant) -> None:
+    file, text = plant
+    [pump] = [r for r, names in file.scopes if "Idle" in names and "Shut" not in names]
+    start = text.lines[pump.start.line].index("region Pump")
+    assert (pump.start.character, text.lines[pump.end.line]) == (start, "    }")
+    assert pump.end.line == pump.start.line + 4  # past the comment's brace
 
 
 def test_hover_types_the_innermost_expression_under_the_cursor(tmp_path: Path) -> None:

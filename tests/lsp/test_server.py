@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from lsp_session import change, cursor, document, open_file, path_of, settle
+from lsp_session import change, cursor, document, fixes, open_file, path_of, settle
 from lsprotocol import types as lsp
 from pytest_lsp import LanguageClient
 
@@ -26,11 +26,7 @@ async def test_a_misspelled_outcome_is_reported_where_it_is_written_with_a_fix(
     start = cursor(text, "Up -> retreated lifted", "lifted")
     end = lsp.Position(start.line, start.character + len("liftd"))
     assert finding.range == lsp.Range(start, end)
-    [fix] = await client.text_document_code_action_async(
-        lsp.CodeActionParams(
-            document(uri), finding.range, lsp.CodeActionContext(diagnostics=[finding])
-        )
-    )
+    [fix] = await fixes(client, uri, finding)
     assert list(fix.edit.changes[uri]) == [lsp.TextEdit(finding.range, "lifted")]
 
 
@@ -43,11 +39,7 @@ async def test_an_unhandled_timeout_is_fixed_as_a_sibling_handles_it(
     uri = await open_file(client, examples / SNAP, text)
     [finding] = [d for d in client.diagnostics[uri] if d.code == "LR0209"]
     assert finding.range.start == cursor(text, '<<import="Seat">> state Press;', "<<")
-    [fix] = await client.text_document_code_action_async(
-        lsp.CodeActionParams(
-            document(uri), finding.range, lsp.CodeActionContext(diagnostics=[finding])
-        )
-    )
+    [fix] = await fixes(client, uri, finding)
     [edit] = fix.edit.changes[uri]
     assert edit.range.start == cursor(text, "Press -> Settle seated", "Press")
     lines = text.split("\n")
