@@ -9,7 +9,12 @@ from typing import Any
 
 from lightrocks.app.commands.common import UsageError, note, require
 
-PARTS = ("lightrocks.app.monitor", "lightrocks.app.monitor.page")
+PARTS = (
+    "lightrocks.app.monitor",
+    "lightrocks.app.monitor.page",
+    "lightrocks.app.web",
+    "lightrocks.app.web.page",
+)
 
 
 def watch_for(args: argparse.Namespace, model: Path, search_path: list[Path], name: str) -> Any:
@@ -38,8 +43,8 @@ def monitor_address(text: str, public: bool = False) -> tuple[str, int]:
     """Where the page is served. An address other machines can reach serves the run's
     controls to them over plain HTTP: only with ``--monitor-public``, and with a warning."""
     require("the monitor", PARTS, ("starlette", "uvicorn", "websockets"), "monitor")
-    from lightrocks.app.monitor.guard import is_loopback
     from lightrocks.app.monitor.server import parse_address
+    from lightrocks.app.web.guard import is_loopback
 
     try:
         host, port = parse_address(text)

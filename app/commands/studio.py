@@ -10,7 +10,13 @@ import threading
 
 from lightrocks.app.commands.common import EXIT_OK, UsageError, command, existing_paths, require
 
-PARTS = ("lightrocks.app.studio", "lightrocks.app.studio.page", "lightrocks.app.monitor")
+PARTS = (
+    "lightrocks.app.studio",
+    "lightrocks.app.studio.page",
+    "lightrocks.app.monitor",
+    "lightrocks.app.web",
+    "lightrocks.app.web.page",
+)
 """The studio's code and page, and the monitor, which serves the runs started from it."""
 
 

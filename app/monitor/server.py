@@ -1,7 +1,7 @@
 """The monitor's web server: the page, the task's SVG, a websocket of the run's records and
 the control requests; every request carries the token printed with the URL, as the cookie
 the page's first load sets or (tools) as ``Authorization: Bearer``; only that first load
-takes it in the URL (see :mod:`.guard`).
+takes it in the URL (see :mod:`lightrocks.app.web.guard`).
 
 uvicorn serves on a daemon thread of its own, so the run's loop never waits for a browser.
 """
@@ -13,20 +13,26 @@ import secrets
 import time
 from contextlib import suppress
 from dataclasses import dataclass, field
-from importlib.resources import files
 from typing import Any
 
 from lightrocks.app.monitor.control import RunControl
 from lightrocks.app.monitor.feed import Feed
-from lightrocks.app.monitor.guard import Guard, serve
+from lightrocks.app.web.guard import Guard
+from lightrocks.app.web.schema import parsed
+from lightrocks.app.web.serving import serve
 
 PUSH_PERIOD = 0.1
 """Seconds between two pushes of new records to a page."""
-SCRIPTS = ("monitor.js", "diagram.js", "plots.js")
-NOT_IN_THE_URL = (
-    "the token goes in the cookie the page's first load sets, or in an 'Authorization: "
-    "Bearer' header; only the page's first load takes it in the URL"
-)
+PAGE = "lightrocks.app.monitor.page"
+ASSETS = {"monitor.js": PAGE, "plots.js": PAGE, "monitor.css": PAGE}
+"""The page's own files; it loads the shared diagram script too."""
+
+
+@dataclass(frozen=True)
+class Breakpoint:
+    """``control/break?at=PATH``: the state or transition to toggle a breakpoint at."""
+
+    at: str
 
 
 def parse_address(text: str) -> tuple[str, int]:
@@ -53,56 +59,24 @@ class Monitor:
 
     def app(self, guard: Guard) -> Any:
         """The routes; ``guard`` knows the token (the ``Host`` and ``Origin`` checks wrap
-        the whole app, see :class:`~.guard.Guarded`)."""
+        the whole app, see :class:`~lightrocks.app.web.guard.Guarded`)."""
         from starlette.applications import Starlette
         from starlette.requests import Request
-        from starlette.responses import HTMLResponse, JSONResponse, Response
+        from starlette.responses import Response
         from starlette.routing import Route, WebSocketRoute
         from starlette.websockets import WebSocket
 
-        def allowed(request: Request | WebSocket) -> bool:
-            """The token as the cookie or an ``Authorization: Bearer`` header, not in the
-            URL (only the page's first load may carry it there; the studio, which mounts
-            this app with a guard of its own, still takes it there too)."""
-            port = request.scope["server"][1]
-            authorization = request.headers.get("authorization")
-            return guard.admits(request.cookies, authorization, request.query_params, port)
+        from lightrocks.app.web import routes
 
-        def refusal(request: Request | WebSocket) -> str:
-            if guard.url_once and "token" in request.query_params:
-                return NOT_IN_THE_URL
-            return "a valid token is needed"
-
-        page = files("lightrocks.app.monitor.page")
-
-        async def index(request: Request) -> Response:
-            """The page; its first load, with the token in the URL, sets the cookie that
-            the page's later requests carry (the page then drops the token from the URL).
-            The page's text is the same for everyone: the token is in no link of it."""
-            if not (allowed(request) or guard.in_query(request.query_params)):
-                return Response("a valid token is needed", status_code=403)
-            text = page.joinpath("index.html").read_text(encoding="utf-8")
-            cookie = {"Set-Cookie": guard.cookie(request.scope["server"][1])}
-            return HTMLResponse(text, headers=cookie)
-
-        def asset(name: str, media_type: str) -> Any:
-            async def serve(request: Request) -> Response:
-                return Response(
-                    page.joinpath(name).read_text(encoding="utf-8"), media_type=media_type
-                )
-
-            return serve
-
+        @routes.guarded
         async def task_svg(request: Request) -> Response:
-            if not allowed(request):
-                return Response(refusal(request), status_code=403)
             return Response(self.svg, media_type="image/svg+xml")
 
-        async def control(request: Request) -> Response:
-            if not allowed(request):
-                return JSONResponse({"error": refusal(request)}, status_code=403)
+        @routes.guarded
+        @routes.answered({})
+        async def control(request: Request) -> Any:
             if self.replay is not None:
-                return JSONResponse({"error": "a replay has no run to control"}, status_code=409)
+                return routes.refused(409, "a replay has no run to control")
             action = request.path_params["action"]
             c = self.control
             if action == "pause":
@@ -114,13 +88,13 @@ class Monitor:
             elif action == "abort":
                 c.abort()
             elif action == "break":
-                c.toggle_breakpoint(request.query_params.get("at", ""))
+                c.toggle_breakpoint(parsed(Breakpoint, request.query_params).at)
             else:
-                return JSONResponse({"error": f"no action '{action}'"}, status_code=404)
-            return JSONResponse(self.status())
+                return routes.refused(404, f"no action '{action}'")
+            return self.status()
 
         async def stream(socket: WebSocket) -> None:
-            if not allowed(socket):
+            if not guard.allows(socket):
                 await socket.close(code=1008)
                 return
             await socket.accept()
@@ -144,16 +118,17 @@ class Monitor:
             finally:
                 self.sent.pop(id(socket), None)
 
-        return Starlette(
+        app = Starlette(
             routes=[
-                Route("/", index),
-                *(Route(f"/{n}", asset(n, "text/javascript")) for n in SCRIPTS),
-                Route("/monitor.css", asset("monitor.css", "text/css")),
+                Route("/", routes.first_load(PAGE)),
+                *routes.assets({**ASSETS, **routes.SHARED}),
                 Route("/task.svg", task_svg),
                 Route("/control/{action}", control, methods=["POST"]),
                 WebSocketRoute("/stream", stream),
             ]
         )
+        app.state.guard = guard
+        return app
 
     def status(self) -> dict[str, Any]:
         c = self.control

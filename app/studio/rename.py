@@ -18,15 +18,18 @@ from lightrocks.app.lsp.index import Index
 from lightrocks.app.lsp.text import Text
 from lightrocks.app.studio import edits
 from lightrocks.app.studio.findings import places
+from lightrocks.app.studio.history import FileChange
+from lightrocks.app.studio.texts import canonical
+from lightrocks.app.studio.views import levels
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.workbench.check import CheckContext
 
 
-def renamed(context: CheckContext, component: Component, level: str, element: str, to: str) -> list:
-    """The changes of the files (see ``workspace.FileChange``) that rename ``element`` of
-    the level ``level`` of the chart (``element`` '': the chart itself) to ``to``."""
-    from lightrocks.app.studio.workspace import FileChange, canonical
-
+def renamed(
+    context: CheckContext, component: Component, level: str, element: str, to: str
+) -> list[FileChange]:
+    """The changes of the files that rename ``element`` of the level ``level`` of the chart
+    (``element`` '': the chart itself) to ``to``."""
     edits.identifier(to, "new name")
     chart = component.qualified_name
     file = component.loaded.path
@@ -94,8 +97,6 @@ def _applied(text: Text, changes: list[lsp.TextEdit]) -> str:
 
 def _names_beside(component: Component, level: str, element: str) -> set[str]:
     """The names declared in the region of ``element`` (a renamed state must not take one)."""
-    from lightrocks.app.studio.workspace import levels
-
     if not element:
         return set()
     prefix = element.rpartition("/")[0]

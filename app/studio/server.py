@@ -1,12 +1,17 @@
-"""The studio's web server: the page, a chart's diagram and state, edits, and runs; on the
-monitor's stack (starlette on uvicorn) and behind the monitor's guard, on the loopback
-interface only.
+"""The studio's web server: the page, a chart's diagram and state, edits, renames, undo and
+runs; on the monitor's stack (starlette on uvicorn), behind the shared guard
+(:mod:`lightrocks.app.web.guard`), on the loopback interface only.
 
 The token printed with the URL is set as a strict cookie by the page's first load; every
 other request carries it. The guard also refuses requests that name another host than the
 one served (a page of another site that rebinds its name to this machine) and requests from
-another site's page, and answers with the monitor's content security policy (see
-:mod:`lightrocks.app.monitor.guard`); this server writes model files.
+another site's page, and answers with a strict content security policy; this server writes
+model files.
+
+Each request is checked once, against its schema (:mod:`.requests`, :mod:`.operations`):
+one that does not fit is answered 400 naming the field; a refusal of the model (a conflict,
+an edit that does not fit, a chart that is not there) has its own status; anything else is
+a bug of ours, answered 500 and logged (:func:`lightrocks.app.web.routes.answered`).
 
 A run started from the page is served by the monitor's own app, mounted below ``/run``
 (:mod:`.runs`). Checking, drawing and writing happen in worker threads, so that the page's
@@ -17,33 +22,51 @@ from __future__ import annotations
 
 import asyncio
 import secrets
-from collections.abc import Callable
-from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
+from starlette.applications import Starlette
+from starlette.requests import HTTPConnection, Request
+from starlette.responses import Response
+from starlette.routing import Mount, Route, WebSocketRoute
+from starlette.websockets import WebSocket
+
 from lightrocks.app.errors import ModelError, RunError
-from lightrocks.app.monitor.guard import Guard, serve
+from lightrocks.app.studio.edits import EditError
+from lightrocks.app.studio.history import Conflict, Unwritten
+from lightrocks.app.studio.operations import operation
+from lightrocks.app.studio.requests import Chart, HistoryStep, NewChart, Rename, StartRun, Target
 from lightrocks.app.studio.runs import Busy, Runs, adapters, robots
-from lightrocks.app.studio.workspace import Conflict, Studio, stamp
+from lightrocks.app.studio.texts import stamp
+from lightrocks.app.studio.workspace import NoSuchChart, Studio
+from lightrocks.app.web import routes
+from lightrocks.app.web.guard import Guard
+from lightrocks.app.web.routes import answered, guarded, json_object
+from lightrocks.app.web.schema import parsed
+from lightrocks.app.web.serving import serve
 from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.generators import GenerationError
 
 HOST = "127.0.0.1"
-PAGES = {
-    "studio.js": ("lightrocks.app.studio.page", "text/javascript"),
-    "run.js": ("lightrocks.app.studio.page", "text/javascript"),
-    "studio.css": ("lightrocks.app.studio.page", "text/css"),
-    "diagram.js": ("lightrocks.app.monitor.page", "text/javascript"),
-}
-"""The files the page loads, the packages they ship in (the diagram is the monitor's) and
-their media types."""
+PAGE = "lightrocks.app.studio.page"
+ASSETS = {"studio.js": PAGE, "run.js": PAGE, "studio.css": PAGE, **routes.SHARED}
+"""The files the page loads and the packages they ship in."""
 WATCH_PERIOD = 0.05
 """Seconds between two looks at the files' modification times for an open page."""
+REFUSALS: dict[type[Exception], int] = {
+    NoSuchChart: 404,
+    Conflict: 409,
+    Busy: 409,
+    EditError: 422,
+    SyntaxProblem: 422,
+    ModelError: 422,
+    RunError: 422,
+    GenerationError: 422,
+    Unwritten: 500,
+}
+"""The model's refusals and the status each is answered with (nothing is written then)."""
 
-
-class BadRequest(Exception):
-    """A request the page would never send: not JSON, or not the fields an edit has."""
+studio_route = answered(REFUSALS)
 
 
 class StudioServer:
@@ -52,196 +75,200 @@ class StudioServer:
         self.token = secrets.token_urlsafe(16)
         self.runs = Runs(studio.folders, studio.shown)
 
-    def app(self, guard: Guard) -> Any:
-        from starlette.applications import Starlette
-        from starlette.requests import Request
-        from starlette.responses import HTMLResponse, JSONResponse, Response
-        from starlette.routing import Mount, Route, WebSocketRoute
-        from starlette.websockets import WebSocket
-
-        def allowed(request: Request | WebSocket) -> bool:
-            return guard.authorised(
-                request.cookies, request.query_params, request.scope["server"][1]
-            )
-
-        def guarded(handler: Any) -> Any:
-            async def serve(request: Request) -> Response:
-                if not allowed(request):
-                    return Response("a valid token is needed", status_code=403)
-                return await handler(request)
-
-            return serve
-
-        async def index(request: Request) -> Response:
-            """The page; its first load, with the token in the URL, sets the cookie that the
-            page's later requests carry."""
-            page = files("lightrocks.app.studio.page").joinpath("index.html")
-            cookie = {"Set-Cookie": guard.cookie(request.scope["server"][1])}
-            return HTMLResponse(page.read_text(encoding="utf-8"), headers=cookie)
-
-        def asset(name: str) -> Any:
-            package, media = PAGES[name]
-
-            async def serve(request: Request) -> Response:
-                text = files(package).joinpath(name).read_text(encoding="utf-8")
-                return Response(text, media_type=media)
-
-            return serve
-
-        async def diagram(request: Request) -> Response:
-            chart = request.query_params.get("chart", "")
-            try:
-                svg = await asyncio.to_thread(self.studio.diagram, chart)
-            except KeyError as error:
-                return JSONResponse({"error": str(error.args[0])}, status_code=404)
-            except (GenerationError, ModelError) as error:
-                return JSONResponse({"error": str(error)}, status_code=422)
-            return Response(svg, media_type="image/svg+xml")
-
-        async def state(request: Request) -> Response:
-            chart = request.query_params.get("chart", "")
-            try:
-                return JSONResponse(await asyncio.to_thread(self.studio.state, chart))
-            except KeyError as error:
-                return JSONResponse({"error": str(error.args[0])}, status_code=404)
-
-        def reading(work: Callable[[], Any]) -> Any:
-            async def serve(request: Request) -> Response:
-                return JSONResponse(await asyncio.to_thread(work))
-
-            return serve
-
-        def posted(work: Callable[[dict[str, Any], Request], Any]) -> Any:
-            """A request with a JSON object as its body, ``work`` done in a worker thread;
-            refusals as JSON with a status that says why (nothing is written then)."""
-
-            async def serve(request: Request) -> Response:
-                try:
-                    try:
-                        body = await request.json()
-                    except ValueError:
-                        raise BadRequest("the request's body is not JSON") from None
-                    if not isinstance(body, dict):
-                        raise BadRequest("the request's body is not a JSON object")
-                    return JSONResponse(await asyncio.to_thread(work, body, request))
-                except BadRequest as error:
-                    return JSONResponse({"error": str(error)}, status_code=400)
-                except (Conflict, Busy) as error:
-                    return JSONResponse({"error": str(error)}, status_code=409)
-                except KeyError as error:
-                    message = str(error.args[0]) if error.args else "missing"
-                    if not message.startswith("no "):
-                        message = f"missing '{message}'"
-                    return JSONResponse({"error": message}, status_code=422)
-                except (SyntaxProblem, ValueError, ModelError, RunError) as error:
-                    return JSONResponse({"error": str(error)}, status_code=422)  # EditError too
-                except OSError as error:
-                    message = f"cannot write {error.filename or 'the file'}: {error.strerror}"
-                    return JSONResponse({"error": message}, status_code=500)
-
-            return guarded(serve)
-
-        def edit_of(body: dict[str, Any]) -> tuple[str, str, str]:
-            chart, seen, level = (body.get(k) for k in ("chart", "version", "level"))
-            if not all(isinstance(v, str) for v in (chart, seen, level)):
-                raise BadRequest("an edit names the chart, its version and the level as texts")
-            return chart, seen, level
-
-        def edit(body: dict[str, Any], request: Request) -> dict[str, Any]:
-            chart, seen, level = edit_of(body)
-            self.studio.edit(chart, seen, level, body)
-            if body.get("op") == "rename" and body.get("element") == "":
-                chart = f"{chart.rpartition('.')[0]}.{body['to']}".lstrip(".")
-            return self.studio.state(chart)
-
-        def preview(body: dict[str, Any], request: Request) -> dict[str, Any]:
-            return self.studio.preview(*edit_of(body), body)
-
-        def history(body: dict[str, Any], request: Request) -> dict[str, Any]:
-            way = request.path_params["way"]
-            if way not in ("undo", "redo"):
-                raise KeyError(f"no '{way}'")
-            done = self.studio.undo() if way == "undo" else self.studio.redo()
-            return {"done": done, "history": self.studio.history()}
-
-        def new(body: dict[str, Any], request: Request) -> dict[str, Any]:
-            given = [body.get(k, "") for k in ("package", "name", "layer", "cell")]
-            if not all(isinstance(v, str) for v in given):
-                raise BadRequest("a new chart names its package, name, layer and cell as texts")
-            return {"chart": self.studio.create(*given)}
-
-        def start(body: dict[str, Any], request: Request) -> dict[str, Any]:
-            given = [body.get(k, "") for k in ("chart", "adapter", "script", "robot")]
-            if not all(isinstance(v, str) for v in given) or not isinstance(
-                body.get("paused", False), bool
-            ):
-                raise BadRequest("a run names its chart, adapter, script and robot as texts")
-            chart, adapter, script, robot = given
-            model = self.studio.component(chart).loaded.path
-            self.runs.start(chart, model, adapter, script, body.get("paused", False), robot)
-            return self.runs.status()
-
-        def run_options() -> dict[str, Any]:
-            return {
-                "adapters": adapters(),
-                "robots": robots(),
-                "scripts": self.runs.scripts(),
-                **self.runs.status(),
-            }
-
-        async def frame(request: Request) -> Response:
-            run = self.runs.current
-            data = await asyncio.to_thread(run.frame) if run is not None else b""
-            if not data:
-                return Response(status_code=204)
-            return Response(data, media_type="image/png")
-
-        async def events(socket: WebSocket) -> None:
-            """A message each time the model files change on disk: the stamp of the files'
-            state (the page's own edits come back with it) and the files that changed."""
-            if not allowed(socket):
-                await socket.close(code=1008)
-                return
-            fingerprint = await asyncio.to_thread(self.studio.fingerprint)
-            seen = {f[0]: f[1:] for f in fingerprint}
-            await socket.accept()
-            try:  # first the state now: the page may have loaded an older one
-                await socket.send_json({"stamp": stamp(fingerprint), "files": []})
-                while True:
-                    await asyncio.sleep(WATCH_PERIOD)
-                    fingerprint = await asyncio.to_thread(self.studio.fingerprint)
-                    now = {f[0]: f[1:] for f in fingerprint}
-                    if now != seen:
-                        files = sorted(set(now.items()) ^ set(seen.items()))
-                        shown = sorted({self.studio.shown(Path(f)) for f, _ in files})
-                        await socket.send_json({"stamp": stamp(fingerprint), "files": shown})
-                        seen = now
-            except Exception:  # the page went away
-                return
-
-        return Starlette(
-            routes=[
-                Route("/", guarded(index)),
-                *(Route(f"/{name}", asset(name)) for name in PAGES),
-                Route("/charts", guarded(reading(self.studio.charts))),
-                Route("/diagram.svg", guarded(diagram)),
-                Route("/state", guarded(state)),
-                Route("/catalogue", guarded(reading(self.studio.catalogue))),
-                Route("/edit", posted(edit), methods=["POST"]),
-                Route("/preview", posted(preview), methods=["POST"]),
-                Route("/history/{way}", posted(history), methods=["POST"]),
-                Route("/new", posted(new), methods=["POST"]),
-                Route("/runs", guarded(reading(run_options))),
-                Route("/runs/start", posted(start), methods=["POST"]),
-                Route("/runs/frame.png", guarded(frame)),
-                WebSocketRoute("/events", events),
-                Mount("/run", app=CurrentRun(self.runs, guard)),
-            ]
-        )
+    def app(self, guard: Guard) -> Starlette:
+        app = Starlette(routes=[*ROUTES, Mount("/run", app=CurrentRun(self.runs, guard))])
+        app.state.server = self
+        app.state.guard = guard
+        return app
 
     def serve(self, port: int = 0) -> str:
         """Start serving on a daemon thread; the URL with the token once it listens."""
         return serve(self.app, HOST, port, self.token, "studio")
+
+
+def _studio(connection: HTTPConnection) -> Studio:
+    return connection.app.state.server.studio
+
+
+def _runs(connection: HTTPConnection) -> Runs:
+    return connection.app.state.server.runs
+
+
+@guarded
+@studio_route
+async def charts(request: Request) -> Any:
+    return await asyncio.to_thread(_studio(request).charts)
+
+
+@guarded
+@studio_route
+async def catalogue(request: Request) -> Any:
+    return await asyncio.to_thread(_studio(request).catalogue)
+
+
+@guarded
+@studio_route
+async def diagram(request: Request) -> Response:
+    chart = parsed(Chart, request.query_params).chart
+    svg = await asyncio.to_thread(_studio(request).diagram, chart)
+    return Response(svg, media_type="image/svg+xml")
+
+
+@guarded
+@studio_route
+async def state(request: Request) -> Any:
+    chart = parsed(Chart, request.query_params).chart
+    return await asyncio.to_thread(_studio(request).state, chart)
+
+
+@guarded
+@studio_route
+async def edit(request: Request) -> Any:
+    """One edit of the level in view; the chart's state afterwards."""
+    body = await json_object(request)
+    target, change = parsed(Target, body), operation(body)
+    studio = _studio(request)
+
+    def work() -> dict[str, Any]:
+        studio.edit(target.chart, target.version, target.level, change)
+        return studio.state(target.chart)
+
+    return await asyncio.to_thread(work)
+
+
+@guarded
+@studio_route
+async def preview(request: Request) -> Any:
+    """What an edit would do; nothing is written."""
+    body = await json_object(request)
+    target, change = parsed(Target, body), operation(body)
+    work = _studio(request).preview
+    return await asyncio.to_thread(work, target.chart, target.version, target.level, change)
+
+
+@guarded
+@studio_route
+async def rename(request: Request) -> Any:
+    """A rename in every file that names the element; the state of the chart afterwards
+    (a renamed chart under its new name)."""
+    body = await json_object(request)
+    target, asked = parsed(Target, body), parsed(Rename, body)
+    studio = _studio(request)
+
+    def work() -> dict[str, Any]:
+        studio.rename(target.chart, target.version, target.level, asked.element, asked.to)
+        chart = target.chart
+        if asked.element == "":
+            chart = f"{chart.rpartition('.')[0]}.{asked.to}".lstrip(".")
+        return studio.state(chart)
+
+    return await asyncio.to_thread(work)
+
+
+@guarded
+@studio_route
+async def history(request: Request) -> Any:
+    """Undo or redo the last edit; what was done and what undo and redo would do next."""
+    await json_object(request)
+    way = parsed(HistoryStep, request.path_params).way
+    studio = _studio(request)
+
+    def work() -> dict[str, Any]:
+        done = studio.undo() if way == "undo" else studio.redo()
+        return {"done": done, "history": studio.history()}
+
+    return await asyncio.to_thread(work)
+
+
+@guarded
+@studio_route
+async def new(request: Request) -> Any:
+    asked = parsed(NewChart, await json_object(request))
+    work = _studio(request).create
+    chart = await asyncio.to_thread(work, asked.package, asked.name, asked.layer, asked.cell)
+    return {"chart": chart}
+
+
+@guarded
+@studio_route
+async def run_options(request: Request) -> Any:
+    """What a run can be started with, and the status of the run under way."""
+    runs = _runs(request)
+
+    def work() -> dict[str, Any]:
+        return {"adapters": adapters(), "robots": robots(), "scripts": runs.scripts()}
+
+    return {**await asyncio.to_thread(work), **runs.status()}
+
+
+@guarded
+@studio_route
+async def start(request: Request) -> Any:
+    """A run of the chart, checked, generated and loaded first; the run's status."""
+    asked = parsed(StartRun, await json_object(request))
+    studio, runs = _studio(request), _runs(request)
+
+    def work() -> dict[str, Any]:
+        model = studio.component(asked.chart).loaded.path
+        runs.start(asked.chart, model, asked.adapter, asked.script, asked.paused, asked.robot)
+        return runs.status()
+
+    return await asyncio.to_thread(work)
+
+
+@guarded
+@studio_route
+async def frame(request: Request) -> Response:
+    run = _runs(request).current
+    data = await asyncio.to_thread(run.frame) if run is not None else b""
+    if not data:
+        return Response(status_code=204)
+    return Response(data, media_type="image/png")
+
+
+async def events(socket: WebSocket) -> None:
+    """A message each time the model files change on disk: the stamp of the files' state
+    (the page's own edits come back with it) and the files that changed."""
+    if not routes.guard_of(socket).allows(socket):
+        await socket.close(code=1008)
+        return
+    studio = _studio(socket)
+    fingerprint = await asyncio.to_thread(studio.fingerprint)
+    seen = {f[0]: f[1:] for f in fingerprint}
+    await socket.accept()
+    try:  # first the state now: the page may have loaded an older one
+        await socket.send_json({"stamp": stamp(fingerprint), "files": []})
+        while True:
+            await asyncio.sleep(WATCH_PERIOD)
+            fingerprint = await asyncio.to_thread(studio.fingerprint)
+            now = {f[0]: f[1:] for f in fingerprint}
+            if now != seen:
+                files = sorted(set(now.items()) ^ set(seen.items()))
+                shown = sorted({studio.shown(Path(f)) for f, _ in files})
+                await socket.send_json({"stamp": stamp(fingerprint), "files": shown})
+                seen = now
+    except Exception:  # the page went away
+        return
+
+
+ROUTES = [
+    Route("/", routes.first_load(PAGE)),
+    *routes.assets(ASSETS),
+    Route("/charts", charts),
+    Route("/diagram.svg", diagram),
+    Route("/state", state),
+    Route("/catalogue", catalogue),
+    Route("/edit", edit, methods=["POST"]),
+    Route("/preview", preview, methods=["POST"]),
+    Route("/rename", rename, methods=["POST"]),
+    Route("/history/{way}", history, methods=["POST"]),
+    Route("/new", new, methods=["POST"]),
+    Route("/runs", run_options),
+    Route("/runs/start", start, methods=["POST"]),
+    Route("/runs/frame.png", frame),
+    WebSocketRoute("/events", events),
+]
+"""Every route but the current run's, which each server mounts with its own runs."""
 
 
 class CurrentRun:

@@ -1,20 +1,16 @@
-"""The models the studio shows and edits: the statecharts below its folders, checked once per
-change of the files on disk, drawn per chart, edited through :mod:`edits`.
+"""The studio's session: the statecharts below its folders, checked once per change of the
+files on disk, drawn per chart, edited through :mod:`.operations` and :mod:`.rename`, with
+their edits kept for undo (:mod:`.history`).
 
 The files stay the source of truth. Every page request first compares the files' sizes and
 modification times with those of the last check; a change (an edit here, an editor, ``git``)
 checks again, so what the page shows is always what is on disk. An edit names the version
-(the hash of the file's text) it was made on and is refused when the file has changed since;
-every write checks once more, right before it, that the file still holds what the edit was
-made on. Edits are kept for undo and redo, which are refused in turn when a file has changed
-since the edit.
+(the hash of the file's text) it was made on and is refused when the file has changed since.
 """
 
 from __future__ import annotations
 
-import hashlib
 import threading
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -22,37 +18,24 @@ from typing import Any
 from lightrocks.app.studio import edits
 from lightrocks.app.studio.drawing import Drawings
 from lightrocks.app.studio.findings import placed, places
+from lightrocks.app.studio.history import Conflict, FileChange, History, Unwritten
+from lightrocks.app.studio.operations import Operation
+from lightrocks.app.studio.texts import file_stamp, stamp, version
+from lightrocks.app.studio.views import levels, outcomes, palette, parameters
 from lightrocks.generators.selection import selected
-from lightrocks.languages.lightrocks.model import Component, Region
-from lightrocks.languages.lightrocks.printer import format_statechart_text
-from lightrocks.metamodel import ast, printer
-from lightrocks.metamodel.grammar import SyntaxProblem
+from lightrocks.languages.lightrocks.model import Component
+from lightrocks.metamodel import ast
 from lightrocks.workbench.check import CheckContext, check
 from lightrocks.workbench.diagnostics import Diagnostic
-from lightrocks.workbench.files import write_atomic
 from lightrocks.workbench.generators import GenerationRequest
 from lightrocks.workbench.incremental import IncrementalCheck
 from lightrocks.workbench.languages import extensions
 from lightrocks.workbench.modelpath import model_files
 from lightrocks.workbench.workspace import Loaded
 
-USES = {"task": ("task", "skill"), "skill": ("skill", "action"), "action": (), "": ("",)}
-"""Which layers a chart of each layer may import (a plain chart: plain charts)."""
-HISTORY = 100
-"""Edits kept for undo."""
 
-
-class Conflict(Exception):
-    """The file changed on disk since the page loaded it."""
-
-
-@dataclass(frozen=True)
-class FileChange:
-    """One file's text before and after an edit; ``None``: the file is not there."""
-
-    path: Path
-    before: str | None
-    after: str | None
+class NoSuchChart(LookupError):
+    """A chart the page names that is not below the studio's folders."""
 
 
 @dataclass
@@ -76,9 +59,7 @@ class Studio:
         self._checker: IncrementalCheck | None = None
         self._drawings = Drawings()
         self._lock = threading.RLock()
-        self.done: list[tuple[str, list[FileChange]]] = []
-        """Edits that undo takes back, the last last: what each did and to which files."""
-        self.undone: list[tuple[str, list[FileChange]]] = []
+        self.edits = History(self.shown)
 
     def files(self) -> list[Path]:
         return sorted(
@@ -87,7 +68,7 @@ class Studio:
 
     def fingerprint(self) -> tuple:
         """The model files with their modification times and sizes."""
-        return tuple((str(f), *_stamp(f)) for f in self.files())
+        return tuple((str(f), *file_stamp(f)) for f in self.files())
 
     def snapshot(self) -> Snapshot:
         """The checked models as they are on disk now: after a change of files, only the
@@ -136,7 +117,7 @@ class Studio:
     def component(self, chart: str) -> Component:
         found = self.snapshot().components.get(chart)
         if found is None:
-            raise KeyError(f"no statechart '{chart}' below the studio's folders")
+            raise NoSuchChart(f"no statechart '{chart}' below the studio's folders")
         return found
 
     def diagram(self, chart: str) -> str:
@@ -155,16 +136,6 @@ class Studio:
         file = component.loaded.path
         marks = places(chart, component.unit)
         layer = component.layer or ""
-        palette = [
-            {
-                "name": name,
-                "layer": c.layer or "",
-                "parameters": parameters(c),
-                "outcomes": list(c.region.outcomes),
-            }
-            for name, c in sorted(snapshot.components.items())
-            if (c.layer or "") in USES.get(layer, ()) and name != chart
-        ]
         return {
             "chart": chart,
             "file": self.shown(file),
@@ -172,7 +143,7 @@ class Studio:
             "version": version(file.read_text(encoding="utf-8")),
             "stamp": stamp(snapshot.fingerprint),
             "findings": placed(snapshot.findings, file, marks),
-            "palette": palette,
+            "palette": palette(chart, layer, snapshot.components),
             "outcomes": outcomes(component),
             "levels": levels(component),
             "parameters": parameters(component, inherited=False),
@@ -186,10 +157,7 @@ class Studio:
 
     def history(self) -> dict[str, str]:
         """What undo and redo would do next ('' for nothing)."""
-        return {
-            "undo": self.done[-1][0] if self.done else "",
-            "redo": self.undone[-1][0] if self.undone else "",
-        }
+        return self.edits.next()
 
     def catalogue(self) -> dict[str, Any]:
         """What a new chart can be: the packages below the folders and the cells to import."""
@@ -204,36 +172,30 @@ class Studio:
 
     # -- edits --------------------------------------------------------------------------
 
-    def changed(
-        self, chart: str, seen: str, level: str, request: dict[str, Any]
-    ) -> tuple[Path, str, str]:
+    def changed(self, chart: str, seen: str, level: str, edit: Operation) -> tuple[Path, str, str]:
         """The chart's file, its text and its text after the edit, made on version ``seen``
         of it at the level ``level``; nothing is written."""
         component = self.component(chart)
         file = component.loaded.path
-        text = file.read_text(encoding="utf-8")
-        if version(text) != seen:
-            raise Conflict(f"{file.name} changed on disk since the page loaded it")
+        text = self._seen(file, seen)
         if level != chart and not level.startswith(chart + "/"):
             raise edits.EditError(f"level '{level}' is not one of {chart}")
         place = level[len(chart) + 1 :].split("/") if level != chart else []
-        return file, text, edits.edited(text, str(file), operation(place, request, component))
+        return file, text, edits.edited(text, str(file), edit.change(place))
 
-    def edit(self, chart: str, seen: str, level: str, request: dict[str, Any]) -> str:
+    def edit(self, chart: str, seen: str, level: str, edit: Operation) -> str:
         """Apply one edit to the chart's file, made on version ``seen`` of it, at the level
         ``level``; the new version."""
         with self._lock:
-            if request.get("op") == "rename":
-                return self.rename(chart, seen, level, str(request["element"]), request["to"])
-            file, text, new = self.changed(chart, seen, level, request)
-            self._commit(describe(request), [FileChange(file, text, new)])
+            file, text, new = self.changed(chart, seen, level, edit)
+            self.edits.commit(edit.label, [FileChange(file, text, new)])
             return version(new)
 
-    def preview(self, chart: str, seen: str, level: str, request: dict[str, Any]) -> dict:
+    def preview(self, chart: str, seen: str, level: str, edit: Operation) -> dict:
         """What an edit would do, checked by the language's own check with the edited text
         in place of the file: the findings of the file afterwards, those the edit brings
         marked ``new``. Nothing is written."""
-        file, text, new = self.changed(chart, seen, level, request)
+        file, text, new = self.changed(chart, seen, level, edit)
         before = {(f["code"], f["message"]) for f in self.state(chart)["findings"]}
         context = check([file], self.folders, {file: new}, True)
         unit = edits.parse_statechart(new, str(file))
@@ -242,21 +204,21 @@ class Studio:
             finding["new"] = (finding["code"], finding["message"]) not in before
         return {"findings": found, "unchanged": new == text}
 
-    def rename(self, chart: str, seen: str, level: str, element: str, to: Any) -> str:
+    def rename(self, chart: str, seen: str, level: str, element: str, to: str) -> str:
         """Rename a state, condition or the chart (``element`` '') with the language
-        server's rename: every file that names it changes; each file is printed again."""
-        from lightrocks.app.studio.rename import renamed
+        server's rename: every file that names it changes; each file is printed again. The
+        new version of the chart's file."""
+        from lightrocks.app.studio.rename import renamed  # the language server's, when needed
 
-        component = self.component(chart)
-        file = component.loaded.path
-        if version(file.read_text(encoding="utf-8")) != seen:
-            raise Conflict(f"{file.name} changed on disk since the page loaded it")
-        if not isinstance(to, str):
-            raise edits.EditError("the new name is missing")
-        context = check(self.folders, self.folders)  # the index needs every file
-        changes = renamed(context, component, level, element, to)
-        self._commit(f"rename {element or chart} to {to}", changes)
-        return version(next((c.after for c in changes if c.after and c.path == file), "")) or ""
+        with self._lock:
+            component = self.component(chart)
+            file = component.loaded.path
+            self._seen(file, seen)
+            context = check(self.folders, self.folders)  # the index needs every file
+            changes = renamed(context, component, level, element, to)
+            self.edits.commit(f"rename {element or chart} to {to}", changes)
+            after = next((c.after for c in changes if c.after and c.path == file), "")
+            return version(after) if after else ""
 
     def create(self, package: str, name: str, layer: str, cell: str = "") -> str:
         """A new chart with nothing in it, in ``package`` (in the folder of that package
@@ -269,243 +231,25 @@ class Studio:
             qualified = f"{package}.{name}" if package else name
             if path.exists() or qualified in self.snapshot().components:
                 raise edits.EditError(f"{qualified} is there already ({self.shown(path)})")
-            folder.mkdir(parents=True, exist_ok=True)
-            self._commit(f"new chart {qualified}", [FileChange(path, None, text)])
+            try:
+                folder.mkdir(parents=True, exist_ok=True)
+            except OSError as error:
+                raise Unwritten(f"cannot make {self.shown(folder)}: {error.strerror}") from None
+            self.edits.commit(f"new chart {qualified}", [FileChange(path, None, text)])
             return qualified
 
     def undo(self) -> str:
         """Take the last edit back; what was undone."""
-        return self._turn(self.done, self.undone, lambda c: FileChange(c.path, c.after, c.before))
+        with self._lock:
+            return self.edits.undo()
 
     def redo(self) -> str:
-        return self._turn(self.undone, self.done, lambda c: c)
-
-    def _turn(self, source: list, target: list, way: Callable[[FileChange], FileChange]) -> str:
         with self._lock:
-            if not source:
-                raise edits.EditError("nothing to " + ("undo" if source is self.done else "redo"))
-            what, changes = source[-1]
-            self._write([way(c) for c in changes])
-            target.append(source.pop())
-            return what
+            return self.edits.redo()
 
-    def _commit(self, what: str, changes: list[FileChange]) -> None:
-        self._write(changes)
-        self.done = [*self.done, (what, changes)][-HISTORY:]
-        self.undone = []
-
-    def _write(self, changes: list[FileChange]) -> None:
-        """Write every file of an edit, or none: each must still hold what the edit was made
-        on."""
-        for change in changes:
-            if _text_of(change.path) != change.before:
-                name = self.shown(change.path)
-                raise Conflict(f"{name} changed on disk since; nothing was written")
-        for change in changes:
-            if change.after is None:
-                change.path.unlink()
-            else:
-                write_atomic(change.path, change.after)
-
-
-def operation(place: list[str], request: dict[str, Any], component: Component) -> Callable:
-    """The change of the chart a page's edit request asks for."""
-    kind = request.get("op")
-
-    def inside(element: Any) -> tuple[list[str], str]:
-        """``Arm/Snap`` on an orthogonal state's level: region ``Arm``, state ``Snap``."""
-        *regions, name = text(element, "element").split("/")
-        return place + regions, name
-
-    def text(value: Any, what: str) -> str:
-        if not isinstance(value, str):
-            raise edits.EditError(f"{what} must be a text")
-        return value
-
-    if kind == "add-state":
-        where, name = inside(request["name"])
-        imported = text(request["imports"], "imports")
-        if not edits.TYPE.match(imported):
-            raise edits.EditError(f"imports '{imported}' is not a qualified chart name")
-
-        def add(unit: ast.StatechartUnit) -> ast.StatechartUnit:
-            unit, simple = edits.with_import(unit, imported)
-            return edits.at(where, edits.add_state(name, simple))(unit)
-
-        return add
-    if kind == "add-transition":
-        where, source = inside(request["source"])
-        there, target = inside(request["target"])
-        if where != there:
-            raise edits.EditError("a transition joins two states of one region")
-        fields = (text(request.get(f, ""), f) for f in ("stimulus", "guard", "action"))
-        return edits.at(where, edits.add_transition(source, target, *fields))
-    if kind == "set-transition":
-        where, source = inside(request["source"])
-        _, target = inside(request["target"])
-        number = request.get("number", 0)
-        if not isinstance(number, int) or isinstance(number, bool):
-            raise edits.EditError("number must be a whole number")
-        fields = (text(request.get(f, ""), f) for f in ("stimulus", "guard", "action"))
-        return edits.at(where, edits.set_transition(source, target, number, *fields))
-    if kind == "set-arguments":
-        where, name = inside(request["state"])
-        values = request["arguments"]
-        if not isinstance(values, list) or not all(
-            isinstance(v, list) and len(v) == 2 and all(isinstance(x, str) for x in v)
-            for v in values
-        ):
-            raise edits.EditError("arguments must be a list of [parameter, value] texts")
-        return edits.at(where, edits.set_arguments(name, [tuple(v) for v in values]))
-    if kind == "set-parameters":
-        if place:
-            raise edits.EditError("parameters belong to the chart's own level")
-        rows = request["parameters"]
-        if not isinstance(rows, list) or not all(
-            isinstance(r, list) and len(r) == 3 and all(isinstance(x, str) for x in r) for r in rows
-        ):
-            raise edits.EditError("parameters must be a list of [type, name, default] texts")
-        return edits.at([], edits.set_parameters([tuple(r) for r in rows]))
-    if kind == "add-condition":
-        where, name = inside(request["name"])
-        condition = text(request.get("expression", ""), "expression")
-        return edits.at(where, edits.add_condition(text(request["kind"], "kind"), name, condition))
-    if kind == "set-condition":
-        where, name = inside(request["name"])
-        condition = text(request.get("expression", ""), "expression")
-        return edits.at(where, edits.set_condition(name, condition))
-    if kind == "delete":
-        element = text(request["element"], "element")
-        if "->" in element:
-            source, _, target = element.partition("->")
-            where, source = inside(source)
-            _, target = inside(target)
-            return edits.at(where, edits.delete_transitions(source, target))
-        where, name = inside(element)
-        return edits.at(where, edits.delete_state(name))
-    if kind == "move":
-        where, name = inside(request["state"])
-        steps = request["steps"]
-        if not isinstance(steps, int) or isinstance(steps, bool):
-            raise edits.EditError("steps must be a whole number")
-        return edits.at(where, edits.move_in_chain(name, steps))
-    raise edits.EditError(f"no edit '{kind}'")
-
-
-def describe(request: dict[str, Any]) -> str:
-    """An edit as undo and redo name it."""
-    kind = request.get("op", "")
-    subject = next((request[k] for k in ("name", "state", "element", "source") if k in request), "")
-    if kind == "add-transition" or kind == "set-transition":
-        subject = f"{request.get('source')} -> {request.get('target')}"
-    return f"{kind} {subject}".strip()
-
-
-def parameters(component: Component, inherited: bool = True) -> list[list[str]]:
-    """``[type, name, default text]`` of each parameter of the chart (its own only unless
-    ``inherited``)."""
-    if inherited:
-        found = list(component.region.parameters.values())
-    else:
-        blocks = [e for e in component.statechart.elements if isinstance(e, ast.ParameterBlock)]
-        found = [p for block in blocks for p in block.parameters]
-    return [
-        [p.type, p.name, printer.expression(p.default) if p.default is not None else ""]
-        for p in found
-    ]
-
-
-def levels(component: Component) -> dict[str, dict[str, Any]]:
-    """Level key -> what its forms show: each box (a state with the chart it imports and its
-    arguments, a condition with its expression) and each arrow with its transitions."""
-    found: dict[str, dict[str, Any]] = {}
-
-    def visit(region: Region, key: str, prefix: str) -> None:
-        level = found.setdefault(key, {"boxes": {}, "arrows": {}})
-        for name, condition in region.conditions.items():
-            level["boxes"][prefix + name] = {
-                "kind": f"{condition.kind} condition",
-                "expression": _text(condition.expression),
-            }
-        for name, pseudostate in region.pseudostates.items():
-            level["boxes"][prefix + name] = {"kind": pseudostate.kind}
-        for transition in region.transitions:
-            arrow = f"{prefix}{transition.source}->{prefix}{transition.target}"
-            level["arrows"].setdefault(arrow, []).append(
-                {
-                    "stimulus": transition.stimulus,
-                    "guard": _text(transition.guard),
-                    "action": _statements(transition.action),
-                }
-            )
-        for name, info in region.states.items():
-            if region.orthogonal and info.region is not None:
-                visit(info.region, key, f"{prefix}{name}/")
-                continue
-            box: dict[str, Any] = {"kind": "state", "outcomes": list(info.outcomes or ())}
-            if info.imported is not None:
-                box["imports"] = info.imported.qualified_name
-                box["parameters"] = parameters(info.imported)
-                box["arguments"] = [
-                    [a.name, printer.expression(a.value)] for a in info.state.arguments
-                ]
-            level["boxes"][prefix + name] = box
-            if info.imported is None and info.region is not None:
-                visit(info.region, f"{key}/{prefix}{name}", "")
-
-    visit(component.region, component.qualified_name, "")
-    return found
-
-
-def _text(node: ast.Expression | None) -> str:
-    return printer.expression(node) if node is not None else ""
-
-
-def _statements(statements: tuple[ast.Statement, ...] | None) -> str:
-    return "\n".join(line for s in statements or () for line in printer.statement(s))
-
-
-def outcomes(component: Component) -> dict[str, dict[str, list[str]]]:
-    """Level key -> box -> the outcomes it can end with (a transition's stimuli from it)."""
-    return {
-        key: {
-            name: box.get("outcomes", [])
-            for name, box in level["boxes"].items()
-            if box["kind"] == "state"
-        }
-        for key, level in levels(component).items()
-    }
-
-
-def canonical(path: Path, text: str) -> str:
-    """``text`` printed canonically when it is a statechart's (comments kept)."""
-    if path.suffix != ".lr":
+    def _seen(self, file: Path, seen: str) -> str:
+        """The file's text, when it is still version ``seen`` of it."""
+        text = file.read_text(encoding="utf-8")
+        if version(text) != seen:
+            raise Conflict(f"{file.name} changed on disk since the page loaded it")
         return text
-    try:
-        return format_statechart_text(text, str(path))
-    except SyntaxProblem as problem:
-        raise edits.EditError(f"{path.name} does not parse after the edit: {problem}") from None
-
-
-def version(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
-
-
-def stamp(fingerprint: tuple) -> str:
-    """A short name of the files' state on disk, the same for the same state."""
-    return hashlib.sha256(repr(fingerprint).encode()).hexdigest()[:16]
-
-
-def _text_of(path: Path) -> str | None:
-    try:
-        return path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        return None
-
-
-def _stamp(file: Path) -> tuple[int, int]:
-    try:
-        status = file.stat()
-    except OSError:
-        return (0, 0)
-    return (status.st_mtime_ns, status.st_size)

@@ -20,7 +20,7 @@ import pytest
 
 from lightrocks.app.cli import main
 from lightrocks.app.commands.monitoring import monitor_address
-from lightrocks.app.monitor.guard import Guard, cookie_name
+from lightrocks.app.web.guard import Guard, cookie_name
 
 pytest.importorskip("starlette", reason="the monitor needs the 'monitor' extra")
 websocket = pytest.importorskip("websockets.sync.client")
@@ -251,3 +251,31 @@ def test_a_guard_takes_the_token_from_a_url_once_only_where_it_is_told() -> None
         assert guard.in_query(query)  # the page's first load
     assert not strict.admits({}, None, query, 8765)
     assert lenient.admits({}, None, query, 8765)  # the studio's, until it follows
+
+
+def test_a_control_request_that_does_not_fit_is_refused_naming_the_field(served: Served) -> None:
+    code, _, body = served.ask("/control/break", "POST", Cookie=served.cookie())
+    assert (code, json.loads(body)) == (400, {"error": "missing 'at'", "field": "at"})
+    code, _, body = served.ask("/control/sideways", "POST", Cookie=served.cookie())
+    assert (code, json.loads(body)) == (404, {"error": "no action 'sideways'"})
+    served.valid()
+
+
+def test_a_route_asks_the_guard_with_the_connection_it_serves() -> None:
+    """What the monitor's and the studio's routes ask: :meth:`Guard.allows` and its
+    refusal, from the request's cookies, headers, query and port."""
+
+    class Connection:
+        def __init__(self, cookies=None, headers=None, query=None) -> None:
+            self.cookies, self.headers = cookies or {}, headers or {}
+            self.query_params, self.scope = query or {}, {"server": ("127.0.0.1", 8765)}
+
+    strict, lenient = Guard("127.0.0.1", "t", url_once=True), Guard("127.0.0.1", "t")
+    for guard in (strict, lenient):
+        assert guard.allows(Connection(cookies={cookie_name(8765): "t"}))
+        assert guard.allows(Connection(headers={"authorization": "Bearer t"}))
+        assert not guard.allows(Connection())
+        assert guard.refusal(Connection()) == "a valid token is needed"
+    in_url = Connection(query={"token": "t"})
+    assert lenient.allows(in_url) and not strict.allows(in_url)
+    assert "first load" in strict.refusal(in_url)

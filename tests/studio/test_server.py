@@ -3,6 +3,7 @@ error and writes nothing; a change on disk is pushed to an open page's socket.""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import shutil
 import time
@@ -14,6 +15,8 @@ import pytest
 
 pytest.importorskip("starlette", reason="the studio needs the 'monitor' extra")
 
+from lightrocks.app.studio import requests
+from lightrocks.app.studio.operations import OPERATIONS
 from lightrocks.app.studio.server import StudioServer
 from lightrocks.app.studio.workspace import Studio
 
@@ -55,11 +58,11 @@ def snapshot(models: Path) -> dict[Path, str]:
     [
         ("edit", b"{not json", 400, "not JSON"),
         ("edit", b"[1, 2]", 400, "not a JSON object"),
-        ("edit", {"version": None, "op": "move"}, 400, "its version"),
-        ("edit", {"op": "move", "state": "PlugTerminal3"}, 422, "missing 'steps'"),
-        ("edit", {"op": "move", "state": "PlugTerminal3", "steps": "x"}, 422, "whole number"),
-        ("edit", {"op": "add-state", "name": ["x"], "imports": "A"}, 422, "must be a text"),
-        ("edit", {"op": "add-state", "name": "A", "imports": 3}, 422, "must be a text"),
+        ("edit", {"version": None, "op": "move"}, 400, "missing 'version'"),
+        ("edit", {"op": "move", "state": "PlugTerminal3"}, 400, "missing 'steps'"),
+        ("edit", {"op": "move", "state": "PlugTerminal3", "steps": "x"}, 400, "whole number"),
+        ("edit", {"op": "add-state", "name": ["x"], "imports": "A"}, 400, "must be a text"),
+        ("edit", {"op": "add-state", "name": "A", "imports": 3}, 400, "must be a text"),
         ("edit", {"op": "add-state", "name": "A", "imports": "a; b"}, 422, "qualified chart name"),
         (
             "edit",
@@ -67,18 +70,21 @@ def snapshot(models: Path) -> dict[Path, str]:
             422,
             "guard: syntax error",
         ),
-        ("edit", {"op": "set-parameters", "parameters": [["Length", "x"]]}, 422, "a list of"),
+        ("edit", {"op": "set-parameters", "parameters": [["Length", "x"]]}, 400, "a list of"),
         ("edit", {"op": "set-parameters", "parameters": [], "level": "x.Y"}, 422, "not one of"),
-        ("edit", {"op": "rename", "element": "PlugTerminal1", "to": "two words"}, 422, "name"),
-        ("edit", {"op": "rename", "element": "PlugTerminal1"}, 422, "missing 'to'"),
-        ("edit", {"op": "nothing"}, 422, "no edit 'nothing'"),
-        ("edit", {"op": "move", "chart": "no.Such", "state": "A", "steps": 1}, 422, "no.Such"),
+        ("edit", {"op": "rename", "element": "PlugTerminal1", "to": "X"}, 400, "no edit 'rename'"),
+        ("edit", {"op": "nothing"}, 400, "no edit 'nothing'"),
+        ("edit", {"op": "move", "chart": "no.Such", "state": "A", "steps": 1}, 404, "no.Such"),
+        ("rename", {"element": "PlugTerminal1", "to": "two words"}, 422, "not a name"),
+        ("rename", {"element": "PlugTerminal1"}, 400, "missing 'to'"),
+        ("rename", {"element": "PlugTerminal1", "to": None, "level": 3}, 400, "'level'"),
         ("preview", b"", 400, "not JSON"),
         ("preview", {"op": "add-condition", "kind": "middle", "name": "x"}, 422, "'start'"),
         ("history/undo", {}, 422, "nothing to undo"),
-        ("history/sideways", {}, 422, "no 'sideways'"),
+        ("history/sideways", {}, 400, "'way' must be one of 'undo', 'redo'"),
         ("history/undo", b"-", 400, "not JSON"),
-        ("new", {"package": "din_rail.tasks", "name": 3}, 400, "as texts"),
+        ("new", {"package": "din_rail.tasks", "name": 3}, 400, "'name' must be a text"),
+        ("new", {"package": "din_rail.tasks"}, 400, "missing 'name'"),
         ("new", {"package": "din_rail.tasks", "name": "Bad Name"}, 422, "is not a name"),
         ("new", {"package": "din_rail.tasks", "name": "PlugTerminal"}, 422, "there already"),
         ("new", {"package": "../up", "name": "X"}, 422, "not a package name"),
@@ -89,13 +95,63 @@ def test_bad_input_is_refused_with_a_reason_and_nothing_written(
 ) -> None:
     url, models = served
     before = snapshot(models)
-    if isinstance(body, dict) and path in ("edit", "preview"):  # None: left out
+    if isinstance(body, dict) and path in ("edit", "preview", "rename"):  # None: left out
         known = {"chart": AHEAD, "version": state(url)["version"], "level": AHEAD}
         body = {k: v for k, v in {**known, **body}.items() if v is not None}
     data = json.dumps(body).encode() if isinstance(body, dict) else body
     got, answer = post(url, path, data)
     assert (got, message in answer.get("error", "")) == (status, True), answer
     assert snapshot(models) == before
+
+
+BODIES = [
+    *((path, schema) for path in ("edit", "preview") for schema in OPERATIONS.values()),
+    *(("rename", schema) for schema in (requests.Target, requests.Rename)),
+    ("new", requests.NewChart),
+    ("runs/start", requests.StartRun),
+]
+"""Each route with a JSON body and each schema its body is checked against."""
+
+
+@pytest.mark.parametrize(("path", "schema"), BODIES, ids=lambda v: getattr(v, "__name__", v))
+def test_each_request_type_names_its_bad_field_with_400(served, minimal, path, schema) -> None:
+    """A field left out, or a JSON object where a text, number, list or flag belongs."""
+    url, models = served
+    before = snapshot(models)
+    known = {"chart": AHEAD, "version": "0", "level": AHEAD, "element": "", "to": "X"}
+    whole = {**known, **minimal(schema)}
+    for field in (f.name for f in dataclasses.fields(schema)):
+        left_out = {k: v for k, v in whole.items() if k != field}
+        for body in ([left_out] if field in minimal(schema) else []) + [{**whole, field: {}}]:
+            status, answer = post(url, path, json.dumps(body).encode())
+            assert (status, answer.get("field")) == (400, field), (body, answer)
+            assert f"'{field}'" in answer["error"]
+    assert snapshot(models) == before
+
+
+@pytest.mark.parametrize("path", ["state", "diagram.svg"])
+def test_a_query_without_its_chart_is_refused_and_an_unknown_chart_is_not_found(
+    served, path: str
+) -> None:
+    url, _ = served
+    status, body = get(url, path)
+    assert (status, json.loads(body)) == (400, {"error": "missing 'chart'", "field": "chart"})
+    status, body = get(url, f"{path}", "&chart=no.Such")
+    assert status == 404 and "no statechart 'no.Such'" in json.loads(body)["error"]
+
+
+def test_a_bug_of_the_server_is_answered_500_and_logged(tmp_path: Path, caplog) -> None:
+    class Broken(Studio):
+        def charts(self) -> list[dict[str, str]]:
+            raise ZeroDivisionError("a bug")
+
+    url = StudioServer(Broken([tmp_path])).serve()
+    status, body = get(url, "charts")
+    assert status == 500
+    assert json.loads(body) == {"error": "the server failed (ZeroDivisionError); see its log"}
+    logged = [r for r in caplog.records if r.name == "lightrocks.app.web"]
+    assert logged and logged[0].exc_info[0] is ZeroDivisionError
+    assert "GET /charts failed" in logged[0].getMessage()
 
 
 def test_a_change_on_disk_is_pushed_to_an_open_page(served) -> None:
@@ -125,10 +181,10 @@ def test_a_token_less_socket_is_closed(served) -> None:
         socket.recv(timeout=30)
 
 
-def get(url: str, path: str) -> tuple[int, bytes]:
+def get(url: str, path: str, more: str = "") -> tuple[int, bytes]:
     base, _, query = url.partition("?")
     try:
-        with urllib.request.urlopen(f"{base}{path}?{query}", timeout=60) as answer:
+        with urllib.request.urlopen(f"{base}{path}?{query}{more}", timeout=60) as answer:
             return answer.status, answer.read()
     except urllib.error.HTTPError as error:
         return error.code, error.read()
@@ -146,7 +202,7 @@ def test_a_run_is_served_by_the_monitor_s_app_below_run(served) -> None:
         ({"chart": "din_rail.tasks.AssembleRail", "robot": "atlas"}, "unknown robot 'atlas'"),
         ({"chart": "no.Such", "adapter": "dryrun"}, "no statechart 'no.Such'"),
         ({"chart": "din_rail.tasks.AssembleRail", "script": "x.json"}, "no outcome script"),
-        ({"chart": "din_rail.tasks.AssembleRail", "paused": "yes"}, "as texts"),
+        ({"chart": "din_rail.tasks.AssembleRail", "paused": "yes"}, "true or false"),
     ]:
         status, answer = post(url, "runs/start", json.dumps(body).encode())
         assert status in (400, 404, 422) and message in answer["error"], answer

@@ -9,9 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.app.studio import workspace
+from lightrocks.app.studio import views
 from lightrocks.app.studio.edits import EditError
-from lightrocks.app.studio.workspace import Conflict, Studio
+from lightrocks.app.studio.history import Conflict
+from lightrocks.app.studio.operations import operation
+from lightrocks.app.studio.workspace import Studio
 
 ROOT = Path(__file__).resolve().parents[2]
 AHEAD = "din_rail_ahead.tasks.AssembleRailAhead"
@@ -43,7 +45,7 @@ def test_an_edit_is_written_checked_and_drawn(models: Path) -> None:
     assert {"din_rail.skills.Retreat", PLUG} <= {p["name"] for p in state["palette"]}
     assert "din_rail.actions.Lift" not in {p["name"] for p in state["palette"]}
     request = {"op": "add-state", "name": "Away", "imports": "din_rail.skills.Retreat"}
-    new = studio.edit(AHEAD, state["version"], AHEAD, request)
+    new = studio.edit(AHEAD, state["version"], AHEAD, operation(request))
     assert new != state["version"]
     text = file_of(models, AHEAD).read_text()
     assert '<<import="Retreat">> state Away;' in text
@@ -58,7 +60,7 @@ def test_an_edit_in_a_region_of_an_orthogonal_state(models: Path) -> None:
     studio = Studio([models])
     version = studio.state(PLUG)["version"]
     request = {"op": "delete", "element": "Arm/Snap->Arm/Jammed"}
-    studio.edit(PLUG, version, f"{PLUG}/PressOn", request)
+    studio.edit(PLUG, version, f"{PLUG}/PressOn", operation(request))
     assert "Snap -> Jammed jammed;" not in file_of(models, PLUG).read_text()
     assert studio.state(PLUG)["outcomes"][f"{PLUG}/PressOn"]["Arm/Snap"] == ["latched", "jammed"]
 
@@ -75,7 +77,9 @@ def test_a_file_changed_on_disk_is_seen_and_an_edit_on_the_old_version_refused(
     assert studio.state(AHEAD)["version"] != seen
     assert "PlugTerminal3&#45;&gt;failed" not in studio.diagram(AHEAD)
     with pytest.raises(Conflict):
-        studio.edit(AHEAD, seen, AHEAD, {"op": "move", "state": "PlugTerminal3", "steps": -1})
+        studio.edit(
+            AHEAD, seen, AHEAD, operation({"op": "move", "state": "PlugTerminal3", "steps": -1})
+        )
     assert ahead.read_text() == changed
 
 
@@ -83,25 +87,29 @@ def test_a_file_changed_on_disk_is_seen_and_an_edit_on_the_old_version_refused(
     ("level", "request_", "message"),
     [
         (AHEAD, {"op": "move", "state": "go", "steps": 1}, "not in a chain"),
-        (AHEAD, {"op": "teleport"}, "no edit 'teleport'"),
-        (AHEAD, {"op": "move", "state": "PlugTerminal2", "steps": "1"}, "whole number"),
-        (AHEAD, {"op": "set-arguments", "state": "PlugTerminal2", "arguments": "x"}, "a list"),
         (AHEAD, {"op": "rename", "element": "PlugTerminal2", "to": "PlugTerminal3"}, "taken"),
         (AHEAD, {"op": "rename", "element": "go->PlugTerminal1", "to": "X"}, "no state"),
+        (AHEAD, {"op": "rename", "element": "PlugTerminal1", "to": "two words"}, "not a name"),
         ("other.Chart", {"op": "delete", "element": "PlugTerminal1"}, "not one of"),
         (AHEAD, {"op": "add-transition", "source": "A/B", "target": "C"}, "one region"),
+        (AHEAD, {"op": "add-state", "name": "A", "imports": "a; b"}, "qualified chart name"),
+        (AHEAD, {"op": "set-parameters", "parameters": [["Length", "a b", ""]]}, "'a b' is not"),
     ],
 )
 def test_edits_that_do_not_fit_are_refused(models: Path, level, request_, message) -> None:
     studio = Studio([models])
     before = file_of(models, AHEAD).read_text()
+    seen = studio.state(AHEAD)["version"]
     with pytest.raises(EditError, match=message):
-        studio.edit(AHEAD, studio.state(AHEAD)["version"], level, request_)
+        if request_["op"] == "rename":
+            studio.rename(AHEAD, seen, level, request_["element"], request_["to"])
+        else:
+            studio.edit(AHEAD, seen, level, operation(request_))
     assert file_of(models, AHEAD).read_text() == before
 
 
 def test_outcomes_of_the_boxes_of_each_level(models: Path) -> None:
-    found = workspace.outcomes(Studio([models]).component(PLUG))
+    found = views.outcomes(Studio([models]).component(PLUG))
     assert found[PLUG]["PressOn"] == ["Latched", "Jammed"]
     assert found[f"{PLUG}/PressOn"]["Camera/LookAhead"] == ["located", "notFound"]
 
@@ -111,7 +119,7 @@ def test_undo_and_redo_and_an_undo_refused_after_a_change_on_disk(models: Path) 
     ahead = file_of(models, AHEAD)
     original = ahead.read_text()
     move = {"op": "move", "state": "PlugTerminal3", "steps": -1}
-    studio.edit(AHEAD, studio.state(AHEAD)["version"], AHEAD, move)
+    studio.edit(AHEAD, studio.state(AHEAD)["version"], AHEAD, operation(move))
     moved = ahead.read_text()
     assert studio.history() == {"undo": "move PlugTerminal3", "redo": ""}
     assert studio.undo() == "move PlugTerminal3"
@@ -134,7 +142,7 @@ def test_a_preview_checks_the_edit_with_the_language_s_check_and_writes_nothing(
     studio = Studio([models])
     before = file_of(models, AHEAD).read_text()
     arguments = [["terminal", "terminal2"], ["slot", "0 N"], ["ahead", "terminal3"]]
-    request = {"op": "set-arguments", "state": "PlugTerminal2", "arguments": arguments}
+    request = operation({"op": "set-arguments", "state": "PlugTerminal2", "arguments": arguments})
     found = studio.preview(AHEAD, studio.state(AHEAD)["version"], AHEAD, request)["findings"]
     assert [(f["code"], f["element"], f["new"]) for f in found] == [
         ("LR0304", "PlugTerminal2", True)
@@ -148,8 +156,7 @@ def test_a_rename_changes_every_file_that_names_it_and_undo_takes_it_back(models
     studio = Studio([models])
     plug = file_of(models, PLUG)
     texts = {f: f.read_text() for f in models.rglob("*.lr")}
-    request = {"op": "rename", "element": "", "to": "PlugAhead"}
-    studio.edit(PLUG, studio.state(PLUG)["version"], PLUG, request)
+    studio.rename(PLUG, studio.state(PLUG)["version"], PLUG, "", "PlugAhead")
     assert not plug.exists()
     moved = plug.with_name("PlugAhead.lr")
     assert "<<task>> statechart PlugAhead {" in moved.read_text()
@@ -163,8 +170,7 @@ def test_a_rename_changes_every_file_that_names_it_and_undo_takes_it_back(models
 
 def test_a_state_renamed_on_a_level_below(models: Path) -> None:
     studio = Studio([models])
-    request = {"op": "rename", "element": "Arm/Snap", "to": "Click"}
-    studio.edit(PLUG, studio.state(PLUG)["version"], f"{PLUG}/PressOn", request)
+    studio.rename(PLUG, studio.state(PLUG)["version"], f"{PLUG}/PressOn", "Arm/Snap", "Click")
     text = file_of(models, PLUG).read_text()
     assert "Click -> Jammed jammed;" in text and "Snap" not in text.replace("SnapOn", "")
     assert studio.state(PLUG)["findings"] == []

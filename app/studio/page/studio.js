@@ -384,7 +384,7 @@ function edit(request, done) {
 async function editing(request, done) {
   const chart = viewChart();
   const body = { chart, version: states.get(chart)?.version, level: diagram.key, ...request };
-  const answer = await api("edit", {}, body);
+  const answer = await api(request.op === "rename" ? "rename" : "edit", {}, body);  // a rename has a route of its own
   const result = await answer.json();
   if (!answer.ok && answer.status !== 409) {
     say(`refused: ${result.error}`, true);

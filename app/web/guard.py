@@ -1,4 +1,5 @@
-"""Who may reach the monitor: the holder of its URL, from its own page, at the address served.
+"""Who may reach a page's server (the monitor's and the studio's): the holder of its URL, from
+its own page, at the address served.
 
 - **Token**: printed once, in the URL of the first load; that load sets it as a cookie
   (``HttpOnly``, ``SameSite=Strict``: no other site's page sends it) and the page drops it
@@ -13,7 +14,7 @@
 - **Origin**: a browser names the page that sends a request; one from any other origin (a
   cross-site form, a websocket opened by another page) is refused. Tools send none.
 - **Headers** on every answer: no referrer, no caching, a content security policy that runs
-  only the monitor's own scripts and lets no page frame it.
+  only the server's own scripts and lets no page frame it.
 """
 
 from __future__ import annotations
@@ -21,11 +22,16 @@ from __future__ import annotations
 import ipaddress
 import secrets
 import socket
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from functools import cache
 from typing import Any
 
 LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
+NO_TOKEN = "a valid token is needed"
+NOT_IN_THE_URL = (
+    "the token goes in the cookie the page's first load sets, or in an 'Authorization: "
+    "Bearer' header; only the page's first load takes it in the URL"
+)
 
 
 def is_loopback(host: str) -> bool:
@@ -75,7 +81,7 @@ class Guard:
         self.token = token
         self.url_once = url_once
         """Only the page's first load takes the token in its URL (the monitor's servers);
-        otherwise any request may (the studio's, until it follows)."""
+        otherwise any request may (the studio's, and a monitor's app mounted in it)."""
 
     def host_allowed(self, header: str, port: int) -> bool:
         """Whether the ``Host`` header names the address served, with its port."""
@@ -91,10 +97,21 @@ class Guard:
         """No ``Origin`` (no browser's cross-origin request), or this server's own."""
         return origin is None or origin.lower() == f"http://{host_header.lower()}"
 
-    def authorised(self, cookies: Mapping[str, str], query: Mapping[str, str], port: int) -> bool:
-        """The token as the cookie, or as ``?token=`` (the studio's check; the monitor's
-        requests go through :meth:`admits`)."""
-        return self.holds_token(cookies, None, port) or self.in_query(query)
+    def allows(self, connection: Any) -> bool:
+        """Whether a request or websocket (starlette's ``HTTPConnection``) of a route other
+        than the page's first load carries the token (see :meth:`admits`)."""
+        return self.admits(
+            connection.cookies,
+            connection.headers.get("authorization"),
+            connection.query_params,
+            connection.scope["server"][1],
+        )
+
+    def refusal(self, connection: Any) -> str:
+        """Why :meth:`allows` refused ``connection``."""
+        if self.url_once and "token" in connection.query_params:
+            return NOT_IN_THE_URL
+        return NO_TOKEN
 
     def holds_token(self, cookies: Mapping[str, str], authorization: str | None, port: int) -> bool:
         """The token as the cookie the first load set, or as ``Authorization: Bearer``."""
@@ -157,7 +174,7 @@ class Guarded:
             await _refuse(scope, send, "the Host header names another address than the one served")
             return
         if not self.guard.origin_allowed(given.get("origin"), host):
-            await _refuse(scope, send, "a page of another origin may not use the monitor")
+            await _refuse(scope, send, "a page of another origin may not use this server")
             return
         extra = [(k.lower().encode(), v.encode("latin-1")) for k, v in headers(host).items()]
 
@@ -180,31 +197,3 @@ async def _refuse(scope: dict[str, Any], send: Any, reason: str) -> None:
     start_headers += [(k.lower().encode(), v.encode()) for k, v in headers().items()]
     await send({"type": "http.response.start", "status": 403, "headers": start_headers})
     await send({"type": "http.response.body", "body": body})
-
-
-def serve(
-    make_app: Callable[[Guard], Any], host: str, port: int, token: str, name: str,
-    url_once: bool = False,
-) -> str:  # fmt: skip
-    """Serve ``make_app(guard)`` behind its guard on a daemon thread named ``name``; the URL
-    with the token once it listens (the monitor and the studio start alike; ``url_once``:
-    see :attr:`Guard.url_once`)."""
-    import threading
-    import time
-
-    import uvicorn
-
-    guard = Guard(host, token, url_once=url_once)
-    bind = host.strip("[]")
-    config = uvicorn.Config(Guarded(make_app(guard), guard), host=bind, port=port,
-                            log_level="warning")  # fmt: skip
-    server = uvicorn.Server(config)
-    thread = threading.Thread(target=server.run, name=name, daemon=True)
-    thread.start()
-    while not server.started:
-        if not thread.is_alive():
-            raise OSError(f"the {name} cannot listen on {host}:{port}")
-        time.sleep(0.02)
-    bound = server.servers[0].sockets[0].getsockname()[1]
-    shown = f"[{bind}]" if ":" in bind else bind
-    return f"http://{shown}:{bound}/?token={token}"
