@@ -1,107 +1,27 @@
-"""A run on another robot than its cell names (``--robot``): the cell's ``robot`` slot
-re-bound to the chosen robot's device type for checking and generating.
-
-The chosen type takes the slot only when it offers the interface of the slot's declared type
-(``languages.domain.interface``); then the cell's parsed unit is copied with the slot's type
-replaced and checked in place of the cell's file. So every value the model sends the robot is
-checked against the chosen type's safe ranges, at its own file:line:col, and the chosen
-type's defaults stand where the model leaves a parameter out; the parse and check caches only
-ever hold what the files say (the copy is never parsed, and a check given it is not
-remembered), and the generated code's cache key names the re-binding.
-"""
+"""A run on another robot than its cell names (``--robot``): the language's re-binding of the
+cell's robot slot (:mod:`languages.domain.rebinding`) for the robot chosen on the command
+line, its refusals as the application's errors."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
 from pathlib import Path
 
 from lightrocks.app.errors import ModelError, RunError
 from lightrocks.app.robots import RobotChoice
-from lightrocks.languages.domain.interface import differences, interface
-from lightrocks.languages.domain.types import Types
-from lightrocks.metamodel import ast
-from lightrocks.workbench.check import CheckContext, load, run_checks
-from lightrocks.workbench.workspace import Loaded, Symbol, Workspace
+from lightrocks.languages.domain import rebinding as language
+from lightrocks.languages.domain.rebinding import Rebinding, check_rebound
 
-ROBOT_SLOT = "robot"
-"""The cell's device that the adapters' robot is: the name they offer it under."""
-LIBRARY_PACKAGE = "lightrocks.robots"
-"""Where a robot's device type is looked up when the cell does not see it."""
-
-
-@dataclass(frozen=True)
-class Rebinding:
-    """The cell's file with its robot slot re-bound, and what that is in words."""
-
-    cell: Loaded
-    description: str
+__all__ = ["Rebinding", "check_rebound", "rebinding"]
 
 
 def rebinding(model: Path, search_path: Sequence[Path], robot: RobotChoice) -> Rebinding | None:
-    """The re-binding a run of ``model`` on ``robot`` needs; ``None`` when the model has no
-    cell with a robot slot, or the slot already has the robot's type. A type that does not
-    offer the slot's interface is a ``ModelError`` naming what differs.
-
-    The models are loaded into a workspace of this look-up's own: finding the robot's type
-    may load packages, which must not reach the remembered workspace of an earlier check."""
-    workspace = load([model], list(search_path)).workspace
-    loaded = workspace.files.get(model.resolve())
-    cell = _cell(workspace, loaded) if loaded is not None else None
-    slot = next((d for d in cell.node.devices if d.name == ROBOT_SLOT), None) if cell else None
-    declared = workspace.resolve(cell.loaded, slot.type) if slot is not None else None
-    if declared is None or not isinstance(declared.node, ast.Device):
-        return None
-    offered = _device_type(workspace, cell.loaded, robot)
-    if offered.qualified_name == declared.qualified_name:
-        return None
-    where = f"the slot '{slot.name} : {slot.type}' of cell {cell.qualified_name}"
-    types = Types(workspace)
-    found = differences(
-        interface(types, declared.loaded, declared.node),
-        interface(types, offered.loaded, offered.node),
-    )
-    if found:
-        raise ModelError(
-            f"error: robot '{robot.name}' ({offered.qualified_name}) cannot take {where}: "
-            f"its interface differs from {declared.name}'s:\n  " + "\n  ".join(found)
-        )
-    rebound = replace(slot, type=offered.qualified_name)
-    node = replace(cell.node, members=_swapped(cell.node.members, slot, rebound))
-    unit = replace(
-        cell.loaded.unit, declarations=_swapped(cell.loaded.unit.declarations, cell.node, node)
-    )
-    description = f"robot '{robot.name}': {offered.qualified_name} in {where}"
-    return Rebinding(Loaded(cell.loaded.path, cell.loaded.language, unit), description)
-
-
-def check_rebound(model: Path, search_path: Sequence[Path], rebound: Rebinding) -> CheckContext:
-    """Every CoCo on ``model`` with the re-bound cell in place of its file."""
-    context = load([model], list(search_path), unchanged={rebound.cell.path: rebound.cell})
-    run_checks(context)
-    return context
-
-
-def _cell(workspace: Workspace, loaded: Loaded) -> Symbol | None:
-    """The cell the model's statechart runs in: the first one its file sees, as the
-    generator chooses it."""
-    cells = [s for s in workspace.scope(loaded).values() if isinstance(s.node, ast.Cell)]
-    return min(cells, key=lambda s: s.qualified_name, default=None)
-
-
-def _device_type(workspace: Workspace, cell: Loaded, robot: RobotChoice) -> Symbol:
-    """The robot's device type as the cell sees it, else from the device library."""
-    found = workspace.scope(cell).get(robot.device_type)
-    if found is None or not isinstance(found.node, ast.Device):
-        found = workspace.lookup(f"{LIBRARY_PACKAGE}.{robot.device_type}")
-    if found is None or not isinstance(found.node, ast.Device):
-        raise RunError(
-            f"robot '{robot.name}' is a {robot.device_type}, but no device type "
-            f"{robot.device_type} is on the model path (nor {LIBRARY_PACKAGE}."
-            f"{robot.device_type} in the device library)"
-        )
-    return found
-
-
-def _swapped(items: tuple, old: object, new: object) -> tuple:
-    return tuple(new if item is old else item for item in items)
+    """The re-binding a run of ``model`` on ``robot`` needs, or None; a device type that
+    does not offer the slot's interface is a ``ModelError`` naming what differs, a missing
+    one a ``RunError``."""
+    try:
+        return language.rebinding(model, search_path, robot.name, robot.device_type)
+    except language.InterfaceDiffers as error:
+        raise ModelError(str(error)) from None
+    except language.NoDeviceType as error:
+        raise RunError(str(error)) from None
