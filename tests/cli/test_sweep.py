@@ -193,17 +193,20 @@ def test_ctrl_c_cancels_the_sweep_and_keeps_only_finished_runs(tmp_path: Path):
         *("--path", str(EXAMPLES), "--adapter", "dryrun", "--seeds", "400", "--workers", "2"),
         *("-o", str(output)),
     ]
-    process = subprocess.Popen(
-        command, stderr=subprocess.PIPE, text=True, preexec_fn=_interruptible
-    )
-    time.sleep(8)  # starting, or running: Ctrl-C cancels either way
+    log = tmp_path / "stderr.txt"
+    with log.open("w") as stderr:
+        process = subprocess.Popen(command, stderr=stderr, text=True, preexec_fn=_interruptible)
+    journal, deadline = output / "sweep.jsonl", time.monotonic() + 120
+    while not journal.exists() and process.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)  # until the first run has finished: the sweep is running
+    assert journal.exists(), f"no run finished within 120 s: {log.read_text()}"
     process.send_signal(signal.SIGINT)
-    _, error = process.communicate(timeout=60)
+    process.wait(timeout=60)
+    error = log.read_text()
     assert process.returncode == 130, error
     assert "Traceback" not in error
-    if output.exists():  # some runs finished: their tables, marked incomplete
-        with (output / "results.csv").open() as stream:
-            assert [row["complete"] for row in csv.DictReader(stream)] == ["False"]
+    with (output / "results.csv").open() as stream:  # the finished runs, marked incomplete
+        assert [row["complete"] for row in csv.DictReader(stream)] == ["False"]
 
 
 def test_sweep_without_its_extra_names_the_install(gate: Path, monkeypatch, capsys):
