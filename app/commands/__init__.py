@@ -6,5 +6,6 @@ from lightrocks.app.commands import check, verify, fmt, generate, run, sweep  # 
 from lightrocks.app.commands import replay, plot, listing, lsp  # noqa: F401
 from lightrocks.app.commands import studio  # noqa: F401
 from lightrocks.app.commands import convert  # noqa: F401
+from lightrocks.app.commands import franka_sim  # noqa: F401
 
 # isort: on
