@@ -83,11 +83,10 @@ def takes_effect(stereotype: str, place: str) -> bool:
 @dataclass(frozen=True)
 class Budget:
     """An action's command budget in seconds and the ``<<timeout>>`` it comes from (None:
-    the default); ``own`` when that is the action's (or the one it extends)."""
+    the default)."""
 
     seconds: float
     stereotype: ast.Stereotype | None = None
-    own: bool = False
 
 
 def visible_cells(workspace: Workspace, loaded: Loaded) -> list[Symbol]:
@@ -224,7 +223,7 @@ class Component:
         extends), else its device's, else :data:`DEFAULT_BUDGET`."""
         own = self.time_budget
         if own is not None:
-            return Budget(own, self.budget, own=True)
+            return Budget(own, self.budget)
         written = ast.stereotype(device.stereotypes, "timeout") if device is not None else None
         found = _duration(written)
         if found is not None:

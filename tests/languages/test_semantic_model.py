@@ -136,3 +136,21 @@ def test_the_model_answers_the_facts() -> None:
     assert not may_use(None, "skill") and not may_use("task", None)
     assert takes_effect("timeout", "device") and takes_effect("scene", "cell")
     assert not takes_effect("timeout", "state") and not takes_effect("unknown", "statechart")
+
+
+def test_an_action_budget_is_its_own_else_its_device_s_else_the_default() -> None:
+    from dataclasses import replace
+
+    from lightrocks.languages.lightrocks.analysis import analysis
+    from lightrocks.workbench.check import check
+
+    examples = ROOT / "examples"
+    context = check([examples / "screwing" / "actions"], [examples])
+    components = {c.name: c for c in analysis(context).models.components}
+    gripper = context.workspace.lookup("lightrocks.robots.ParallelGripper").node
+    own = components["Approach"].command_budget(gripper)
+    assert (own.seconds, own.stereotype.value) == (10.0, "10 s")
+    device = components["CloseGripper"].command_budget(gripper)
+    assert (device.seconds, device.stereotype.value) == (5.0, "5 s")
+    default = components["CloseGripper"].command_budget(replace(gripper, stereotypes=()))
+    assert (default.seconds, default.stereotype) == (DEFAULT_BUDGET, None)
