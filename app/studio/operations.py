@@ -66,8 +66,9 @@ class AddState(Operation):
 
 
 @dataclass(frozen=True)
-class AddTransition(Operation):
-    OP: ClassVar[str] = "add-transition"
+class _Transition(Operation):
+    """An edit of a transition from ``source`` to ``target`` with the texts of its form."""
+
     source: str
     target: str
     stimulus: str = ""
@@ -77,6 +78,11 @@ class AddTransition(Operation):
     @property
     def label(self) -> str:
         return f"{self.OP} {self.source} -> {self.target}"
+
+
+@dataclass(frozen=True)
+class AddTransition(_Transition):
+    OP: ClassVar[str] = "add-transition"
 
     def change(self, place: list[str]) -> Change:
         where, source = _inside(place, self.source)
@@ -88,20 +94,11 @@ class AddTransition(Operation):
 
 
 @dataclass(frozen=True)
-class SetTransition(Operation):
+class SetTransition(_Transition):
     """The ``number``-th transition of an arrow (from 0, as the arrow lists them)."""
 
     OP: ClassVar[str] = "set-transition"
-    source: str
-    target: str
     number: int = 0
-    stimulus: str = ""
-    guard: str = ""
-    action: str = ""
-
-    @property
-    def label(self) -> str:
-        return f"{self.OP} {self.source} -> {self.target}"
 
     def change(self, place: list[str]) -> Change:
         where, source = _inside(place, self.source)
