@@ -2,7 +2,9 @@
 
 A generator is found through the ``lightrocks.generators`` entry points. It receives the
 checked models and returns the files it wants written, as relative path to text; the
-workbench writes them all or nothing. Templates are jinja2 files beside the generator; a
+workbench writes them all or nothing. It declares the options it takes (:class:`Option`),
+which a front door reads once from the user's ``NAME=VALUE`` words (:func:`parse_options`)
+and ``lightrocks list generators`` shows. Templates are jinja2 files beside the generator; a
 user's template folder is searched first, so one template can be replaced by name without
 forking the generator (MontiCore's template path).
 """
@@ -10,7 +12,7 @@ forking the generator (MontiCore's template path).
 from __future__ import annotations
 
 import traceback
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from importlib.metadata import entry_points
@@ -24,27 +26,87 @@ from lightrocks.workbench.check import CheckContext
 from lightrocks.workbench.files import write_tree
 
 
+class GenerationError(Exception):
+    """A problem the user can fix (bad option, output folder not writable, …)."""
+
+
+class OptionError(GenerationError):
+    """An option the target does not declare, or a value its declaration refuses."""
+
+
+@dataclass(frozen=True)
+class Option:
+    """An option a generator takes (``--option NAME=VALUE``): its name, its type as the user
+    reads it (``kind``), its default and what it does. ``read`` turns the user's text into
+    the value, or raises ``ValueError`` with the rest of the message (`` is not …``)."""
+
+    name: str
+    kind: str
+    default: Any
+    doc: str
+    read: Callable[[str], Any]
+
+    def value(self, given: Any = None) -> Any:
+        """The value of this option: the default when not ``given``, read when given as
+        text, else as given (a value already read)."""
+        if given is None:
+            return self.default
+        if not isinstance(given, str):
+            return given
+        try:
+            return self.read(given)
+        except ValueError as problem:
+            raise OptionError(f"option {self.name}='{given}'{problem}") from None
+
+
+def whole_number(name: str, default: int, doc: str, minimum: int = 0) -> Option:
+    """An option whose value is a whole number ``>= minimum``."""
+    bound = ">= 0" if minimum == 0 else f"> {minimum - 1}"
+
+    def read(text: str) -> int:
+        if not (text.isascii() and text.isdigit()) or int(text) < minimum:
+            raise ValueError(f" is not a whole number {bound}")
+        return int(text)
+
+    return Option(name, f"whole number {bound}", default, doc, read)
+
+
+def one_of(name: str, choices: Sequence[str], doc: str) -> Option:
+    """An option that is off (``""``, its default) or one of ``choices``."""
+
+    def read(text: str) -> str:
+        if text and text not in choices:
+            if len(choices) == 1:
+                raise ValueError(f": the only value is '{choices[0]}'")
+            raise ValueError(f": choose one of {', '.join(choices)}")
+        return text
+
+    return Option(name, "|".join(choices), "", doc, read)
+
+
 @dataclass
 class GenerationRequest:
-    """What to generate: the checked models, the files named by the user, and options."""
+    """What to generate: the checked models, the files named by the user, and options (by
+    name: as :func:`parse_options` read them, or text)."""
 
     context: CheckContext
     files: list[Path]
-    options: Mapping[str, str] = field(default_factory=dict)
+    options: Mapping[str, Any] = field(default_factory=dict)
     templates: Path | None = None
+
+    def value(self, option: Option) -> Any:
+        """The value of ``option`` in this request (its default where not given)."""
+        return option.value(self.options.get(option.name))
 
 
 class Generator(Protocol):
     name: str
     description: str
+    options: Sequence[Option]
 
     def generate(self, request: GenerationRequest) -> dict[str, str | bytes]:
         """Files to write: relative path -> text, or bytes for pictures."""
         ...
-
-
-class GenerationError(Exception):
-    """A problem the user can fix (bad option, output folder not writable, …)."""
 
 
 def refuse_extensions(target: str, unit: Any) -> None:
@@ -56,6 +118,22 @@ def refuse_extensions(target: str, unit: Any) -> None:
                 f"{node.position}: the {target} target does not map '{type(node).__name__}', "
                 "which a language extension adds"
             )
+
+
+def declared_options(generator: Generator) -> tuple[Option, ...]:
+    """The options ``generator`` declares (none, for one that declares nothing)."""
+    return tuple(getattr(generator, "options", ()))
+
+
+def parse_options(generator: Generator, given: Mapping[str, str]) -> dict[str, Any]:
+    """Every option of ``generator``, read from the user's text where given, else its
+    default; an :class:`OptionError` for a name it does not declare or a value it refuses."""
+    declared = {option.name: option for option in declared_options(generator)}
+    unknown = [name for name in given if name not in declared]
+    if unknown:
+        takes = f"its options: {', '.join(declared)}" if declared else "it takes no options"
+        raise OptionError(f"target '{generator.name}' has no option '{unknown[0]}'; {takes}")
+    return {name: option.value(given.get(name)) for name, option in declared.items()}
 
 
 def generator_names() -> list[str]:

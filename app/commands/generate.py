@@ -28,7 +28,11 @@ def _configure_generate(sub: argparse._SubParsersAction) -> None:
     path_option(parser)
     parser.add_argument("--templates", help="folder whose templates override the built-in ones")
     parser.add_argument(
-        "--option", action="append", default=[], metavar="NAME=VALUE", help="generator option"
+        "--option",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="generator option (see 'list generators')",
     )
 
 
@@ -37,7 +41,12 @@ def cmd_generate(args: argparse.Namespace) -> int:
     from lightrocks.app import pipeline
     from lightrocks.app.errors import ModelError
     from lightrocks.app.specs import generate_spec
-    from lightrocks.workbench.generators import GenerationError, TemplateProblem, write_all
+    from lightrocks.workbench.generators import (
+        GenerationError,
+        OptionError,
+        TemplateProblem,
+        write_all,
+    )
 
     try:
         spec = generate_spec(
@@ -47,6 +56,9 @@ def cmd_generate(args: argparse.Namespace) -> int:
             dict(option(o) for o in args.option),
             existing_paths([args.templates])[0] if args.templates else None,
         )
+    except OptionError as error:  # the user's option, not the command line's form
+        print(f"lightrocks: error: {report.printable(str(error))}", file=sys.stderr)
+        return EXIT_FINDINGS
     except GenerationError as error:
         raise UsageError(str(error)) from None
     try:

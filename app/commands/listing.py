@@ -4,8 +4,12 @@ scenes or robots."""
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
 from lightrocks.app.commands.common import EXIT_OK, all_cocos, command
+
+if TYPE_CHECKING:
+    from lightrocks.workbench.generators import Option
 
 
 def _configure_list(sub: argparse._SubParsersAction) -> None:
@@ -18,6 +22,12 @@ def _configure_list(sub: argparse._SubParsersAction) -> None:
     )
 
 
+def _option_row(option: Option) -> tuple[str, ...]:
+    """A generator's option, under the generator: how to give it, its type and what it does."""
+    default = f", default {option.default}" if option.default != "" else ""
+    return (f"    --option {option.name}: {option.kind}{default}; {option.doc}",)
+
+
 @command(_configure_list)
 def cmd_list(args: argparse.Namespace) -> int:
     from importlib.metadata import entry_points
@@ -25,7 +35,7 @@ def cmd_list(args: argparse.Namespace) -> int:
     from lightrocks.app.robots import registered
     from lightrocks.workbench.conversions import conversions
     from lightrocks.workbench.extensions import language_extensions
-    from lightrocks.workbench.generators import load_generator
+    from lightrocks.workbench.generators import declared_options, load_generator
     from lightrocks.workbench.languages import languages
 
     if args.what == "languages":
@@ -34,12 +44,20 @@ def cmd_list(args: argparse.Namespace) -> int:
     elif args.what == "cocos":
         rows = [(c.code, c.severity.value, c.summary) for c in all_cocos()]
     elif args.what == "generators":
-        rows = [
-            (e.name, e.value, load_generator(e.name).description)
-            for e in sorted(entry_points(group="lightrocks.generators"), key=str)
-        ]
+        rows = []
+        for e in sorted(entry_points(group="lightrocks.generators"), key=str):
+            generator = load_generator(e.name)
+            rows.append((e.name, e.value, generator.description))
+            rows += [_option_row(option) for option in declared_options(generator)]
     elif args.what == "conversions":
         rows = [(c.name, f"{c.source} -> .{c.target}", c.description) for c in conversions()]
+    elif args.what == "adapters":
+        from lightrocks.app.adapter_factory import declared_options
+
+        rows = []
+        for e in sorted(entry_points(group="lightrocks.adapters"), key=str):
+            rows.append((e.name, e.value, ""))
+            rows += [(f"  {o.name}", o.doc, "") for o in declared_options(e.name).values()]
     elif args.what == "robots":
         rows = [(n, r.device_type, r.description) for n, r in sorted(registered().items())]
     else:

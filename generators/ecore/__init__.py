@@ -16,6 +16,7 @@ from lightrocks.workbench.generators import (
 class EcoreGenerator:
     name = "ecore"
     description = "the Ecore metamodel (lightrocks.ecore) and each statechart as XMI"
+    options = ()
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
         components = selected(request)

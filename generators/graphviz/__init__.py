@@ -21,28 +21,33 @@ from lightrocks.generators.graphviz.rendering import FORMATS, render, renderer
 from lightrocks.generators.outputs import chart_stems, distinct, shortened
 from lightrocks.generators.selection import selected
 from lightrocks.languages.lightrocks.model import Component
-from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
+from lightrocks.workbench.generators import (
+    GenerationError,
+    GenerationRequest,
+    one_of,
+    template_environment,
+    whole_number,
+)
 
 TEMPLATES = Path(__file__).parent / "templates"
+
+DEPTH = whole_number("depth", 0, "also draw the content of imported statecharts N levels deep")
+RENDER = one_of("render", FORMATS, "also draw each .dot file as a picture beside it")
+LEVELS = one_of("levels", ("yes",), "one picture per chart level, with levels.json")
 
 
 class DotGenerator:
     name = "dot"
+    options = (DEPTH, RENDER, LEVELS)
 
     @property
     def description(self) -> str:
         found = renderer()
         drawn = f"rendered by {found}" if found else "no renderer installed"
-        options = "depth=N, render=svg|png, levels=yes"
-        return f"Graphviz DOT of statecharts (options {options}; {drawn})"
+        return f"Graphviz DOT of statecharts ({drawn})"
 
     def generate(self, request: GenerationRequest) -> dict[str, str | bytes]:
-        depth_text = request.options.get("depth", "0")
-        if not depth_text.isdigit():
-            raise GenerationError(f"option depth='{depth_text}' is not a whole number >= 0")
-        fmt = request.options.get("render", "")
-        if fmt and fmt not in FORMATS:
-            raise GenerationError(f"option render='{fmt}': choose one of {', '.join(FORMATS)}")
+        depth, fmt, levels = request.value(DEPTH), request.value(RENDER), request.value(LEVELS)
         environment = template_environment(TEMPLATES, request.templates)
         environment.globals["quote"] = quote
         template = environment.get_template("statechart.dot.jinja")
@@ -50,9 +55,6 @@ class DotGenerator:
         if not components:
             raise GenerationError("no statechart among the selected models")
         stems = chart_stems(components, qualified=True)
-        levels = request.options.get("levels", "")
-        if levels not in ("", "yes"):
-            raise GenerationError(f"option levels='{levels}': the only value is 'yes'")
         if levels:
             return _levels(components, stems, request)
         suffixes = ["dot", *([fmt] if fmt else [])]
@@ -60,7 +62,7 @@ class DotGenerator:
         files: dict[str, str | bytes] = {}
         for component in components:
             stem = stems[component.qualified_name]
-            text = template.render(graph=Graph.of(component, int(depth_text)))
+            text = template.render(graph=Graph.of(component, depth))
             files[f"{stem}.dot"] = text
             if fmt:
                 files[f"{stem}.{fmt}"] = render(text, fmt)

@@ -13,6 +13,7 @@ from datetime import UTC, datetime
 
 from lightrocks.generators.plcopen.document import project
 from lightrocks.generators.sfc_iec61131 import (
+    INTERVAL,
     build_unit,
     checked_text,
     environment_of,
@@ -33,7 +34,8 @@ def creation_time() -> datetime:
 
 class PlcopenGenerator:
     name = "plcopen"
-    description = "PLCopen TC6 XML v2.01 with graphical SFC (option interval_ms=1: the cycle)"
+    description = "PLCopen TC6 XML v2.01 with graphical SFC"
+    options = (INTERVAL,)
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
         environment = environment_of(request)  # for syntax of language extensions

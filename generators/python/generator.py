@@ -65,6 +65,7 @@ def ruff_format(files: dict[str, str]) -> dict[str, str]:
 class PythonGenerator:
     name = "python"
     description = "Python modules on the LightRocks state runtime (one per statechart)"
+    options = ()
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
         folders = [e.templates for e in language_extensions() if e.templates is not None]

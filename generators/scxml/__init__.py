@@ -37,6 +37,7 @@ def document(component: Component) -> Document:
 class ScxmlGenerator:
     name = "scxml"
     description = "SCXML (W3C) of plain statecharts, with python-statemachine's Python data model"
+    options = ()
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
         components = selected(request)

@@ -20,9 +20,16 @@ from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.model import Component
 from lightrocks.languages.lightrocks.typing import Typing
 from lightrocks.workbench.extensions import language_extensions
-from lightrocks.workbench.generators import GenerationError, GenerationRequest, template_environment
+from lightrocks.workbench.generators import (
+    GenerationError,
+    GenerationRequest,
+    template_environment,
+    whole_number,
+)
 
 TEMPLATES = Path(__file__).parent / "templates"
+
+INTERVAL = whole_number("interval_ms", 1, "the task cycle in milliseconds", minimum=1)
 
 
 def prioritize(unit: Unit) -> None:
@@ -69,11 +76,8 @@ def checked_text(environment: jinja2.Environment, unit: Unit, interval: str) -> 
 
 
 def interval_option(request: GenerationRequest) -> str:
-    """The task cycle (option ``interval_ms``, default 1) as a TIME literal."""
-    interval = request.options.get("interval_ms", "1")
-    if not interval.isdigit() or int(interval) == 0:
-        raise GenerationError(f"option interval_ms='{interval}' is not a whole number > 0")
-    return time_literal(int(interval) / 1000)
+    """The task cycle (option ``interval_ms``) as a TIME literal."""
+    return time_literal(request.value(INTERVAL) / 1000)
 
 
 def unit_files(request: GenerationRequest, suffix: str) -> dict[str, Component]:
@@ -90,7 +94,8 @@ def unit_files(request: GenerationRequest, suffix: str) -> dict[str, Component]:
 
 class SfcGenerator:
     name = "sfc"
-    description = "IEC 61131-3 textual SFC for PLCs (option interval_ms=1: the task cycle)"
+    description = "IEC 61131-3 textual SFC for PLCs"
+    options = (INTERVAL,)
 
     def generate(self, request: GenerationRequest) -> dict[str, str]:
         environment = environment_of(request)
