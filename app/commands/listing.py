@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from lightrocks.app.commands.common import EXIT_OK, all_cocos, command
+from lightrocks.app.commands.common import EXIT_OK, UsageError, all_cocos, command
 
 if TYPE_CHECKING:
     from lightrocks.workbench.generators import Option
@@ -33,7 +33,7 @@ def cmd_list(args: argparse.Namespace) -> int:
     from importlib.metadata import entry_points
 
     from lightrocks.app.robots import registered
-    from lightrocks.workbench.conversions import conversions
+    from lightrocks.workbench.conversions import ConversionError, conversions
     from lightrocks.workbench.extensions import language_extensions
     from lightrocks.workbench.generators import declared_options, load_generator
     from lightrocks.workbench.languages import languages
@@ -50,7 +50,11 @@ def cmd_list(args: argparse.Namespace) -> int:
             rows.append((e.name, e.value, generator.description))
             rows += [_option_row(option) for option in declared_options(generator)]
     elif args.what == "conversions":
-        rows = [(c.name, f"{c.source} -> .{c.target}", c.description) for c in conversions()]
+        try:
+            found = conversions()
+        except ConversionError as error:
+            raise UsageError(str(error)) from None
+        rows = [(c.name, f"{c.source} -> .{c.target}", c.description) for c in found]
     elif args.what == "adapters":
         from lightrocks.app.adapter_factory import declared_options
 

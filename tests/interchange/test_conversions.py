@@ -91,6 +91,8 @@ def test_a_broken_registration_is_a_usage_error(
     captured = capsys.readouterr()
     assert message in captured.err and "Traceback" not in captured.err
     assert not (tmp_path / "Note.lr").exists()
+    assert main(["list", "conversions"]) == 2
+    assert message in capsys.readouterr().err
 
 
 def test_a_file_without_suffix_names_what_is_known(tmp_path: Path) -> None:
