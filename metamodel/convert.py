@@ -16,6 +16,10 @@ from lightrocks.metamodel import ast
 from lightrocks.metamodel.lines import Lines
 from lightrocks.metamodel.units import UnitError, lookup
 
+SHORT = 256
+"""A node no longer than this many characters (most are) has its end found by looking for a
+line break in it, not by counting lines."""
+
 
 class Converter:
     def __init__(
@@ -32,10 +36,13 @@ class Converter:
 
     def position(self, node: Any) -> ast.Position:
         """Where ``node`` starts and ends (the parse tree's offsets as lines and columns)."""
-        line, column = self._lines.line_column(getattr(node, "_tx_position", 0))
+        start = getattr(node, "_tx_position", 0)
+        line, column = self._lines.line_column(start)
         end = getattr(node, "_tx_position_end", None)
         if end is None:
             return ast.Position(self.file, line, column)
+        if end - start <= SHORT and self._lines.text.find("\n", start, end) < 0:
+            return ast.Position(self.file, line, column, line, column + end - start)
         return ast.Position(self.file, line, column, *self._lines.line_column(end))
 
     def convert(self, node: Any) -> Any:
