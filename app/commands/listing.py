@@ -35,7 +35,8 @@ def cmd_list(args: argparse.Namespace) -> int:
     from lightrocks.app.robots import registered
     from lightrocks.workbench.conversions import ConversionError, conversions
     from lightrocks.workbench.extensions import language_extensions
-    from lightrocks.workbench.generators import declared_options, load_generator
+    from lightrocks.workbench.generators import declared_options as generator_options
+    from lightrocks.workbench.generators import load_generator
     from lightrocks.workbench.languages import languages
 
     if args.what == "languages":
@@ -48,7 +49,7 @@ def cmd_list(args: argparse.Namespace) -> int:
         for e in sorted(entry_points(group="lightrocks.generators"), key=str):
             generator = load_generator(e.name)
             rows.append((e.name, e.value, generator.description))
-            rows += [_option_row(option) for option in declared_options(generator)]
+            rows += [_option_row(option) for option in generator_options(generator)]
     elif args.what == "conversions":
         try:
             found = conversions()
