@@ -95,3 +95,17 @@ def test_a_node_made_of_parts_spans_from_the_first_to_the_last() -> None:
     start, last = ast.Position("A.lr", 1, 3, 1, 8), ast.Position("A.lr", 2, 1, 2, 6)
     assert start.through(last) == start
     assert (start.through(last).end_line, start.through(last).end_column) == (2, 6)
+
+
+def test_uml_p_statecharts_carry_ends_too() -> None:
+    source = "statechart Door {\n  initial state Shut;\n  Shut -> Open [a + b(1) > 2];\n}\n"
+    unit = language_for(".sc").parse(source, "Door.sc")
+    lines = source.split("\n")
+    spans = {
+        lines[p.line - 1][p.column - 1 : p.end_column - 1]
+        for node in ast.walk(unit)
+        if isinstance(p := getattr(node, "position", None), ast.Position)
+        and p.has_end
+        and p.line == p.end_line
+    }
+    assert {"initial state Shut;", "a + b(1) > 2", "b(1)"} <= spans
