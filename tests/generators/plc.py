@@ -26,7 +26,10 @@ from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.loading import load_component
 from lightrocks.app.run import drive
 from lightrocks.app.values import parse_delay
+from lightrocks.generators.sfc_iec61131 import build_unit
 from lightrocks.generators.sfc_iec61131.ir import Block, Unit
+from lightrocks.languages.lightrocks.analysis import analysis
+from lightrocks.workbench.check import check
 
 PLACES = (JUDGES / "matiec", Path("/opt/matiec"))
 BEREMIZ_OPTIONS = ("-f", "-l", "-p")
@@ -136,6 +139,14 @@ Event = tuple[str, ...]
 def steps(events: list[str]) -> list[str | float]:
     """Events and ``+500ms`` clock advances as a run takes them."""
     return [parse_delay(e) if e.startswith("+") else e for e in events]
+
+
+def sfc_unit(model: Path, search: list[Path]) -> Unit:
+    """The SFC unit of ``model``: what the driver emulates and the traces are compared on."""
+    context = check([model], search)
+    result = analysis(context)
+    top = next(c for c in result.models.components if c.loaded.path == model.resolve())
+    return build_unit(top, result.typing)
 
 
 def python_trace(scenario: Scenario, search: list[Path]) -> list[Event]:

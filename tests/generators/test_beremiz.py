@@ -17,10 +17,10 @@ from pathlib import Path
 
 import pytest
 from beremiz import Beremiz, beremiz, build, load
+from edge_models import edge_cases
 from extension_units import extension_units
 from generation import EXAMPLES, ROOT
 from judges import missing
-from test_matiec_findings import _cases
 
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import GenerationRequest, load_generator
@@ -47,7 +47,7 @@ def projects(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
     the target's edges (test_matiec_findings) and the extension package's models."""
     out = tmp_path_factory.mktemp("plcopen")
     edges = tmp_path_factory.mktemp("edges")
-    _cases(edges)
+    edge_cases(edges)
     written = []
     for name, (paths, search) in {**SOURCES, "edges": ([edges], [edges])}.items():
         models = sorted(p for folder in paths for p in folder.rglob("*.lr"))

@@ -9,12 +9,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from edge_models import LONG
 from generation import generate
 
 from lightrocks.workbench.generators import GenerationError
 
 TARGETS = ["sfc", "plcopen", "python", "dot", "ecore"]
-LONG = "L" + "o" * 249  # a statechart's file, <name>.lr, takes up to 252 characters
 
 
 def _chart(root: Path, package: str, name: str) -> Path:

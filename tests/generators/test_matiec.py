@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 from generation import EXAMPLES, generate
+from mix_models import every_mix
 from plc import (
     Scenario,
     comparable,
@@ -24,15 +25,12 @@ from plc import (
     iec2c,
     python_trace,
     sfc_trace,
+    sfc_unit,
     streams,
 )
-from test_sfc_numbers import every_mix
 
-from lightrocks.generators.sfc_iec61131 import build_unit
 from lightrocks.generators.sfc_iec61131.ir import Unit
 from lightrocks.generators.sfc_iec61131.reserved import is_reserved, is_reserved_for_unit
-from lightrocks.languages.lightrocks.analysis import analysis
-from lightrocks.workbench.check import check
 
 CASES = ("screwing", "din_rail", "din_rail_ahead", "plain")
 SCREW_TASK = EXAMPLES / "screwing" / "tasks" / "ScrewTask.lr"
@@ -133,13 +131,6 @@ CONSTRUCTS = [
 ]  # fmt: skip
 
 
-def _unit(model: Path, search: list[Path] = SEARCH):
-    context = check([model], search)
-    result = analysis(context)
-    top = next(c for c in result.models.components if c.loaded.path == model.resolve())
-    return build_unit(top, result.typing)
-
-
 def test_the_reserved_names_cover_matiecs_library(home: Path) -> None:
     """Every identifier of MatIEC's library is reserved for unit names, and every block or
     function it declares for every name."""
@@ -161,7 +152,7 @@ def _compile(home: Path, source: Path, model: Path, search: list[Path] = SEARCH)
     compiled = iec2c(home, source, out)
     if compiled.returncode != 0:
         return f"iec2c: {compiled.stderr}{compiled.stdout}"
-    driver = driver_source(_unit(model, search), Scenario("link", model), max_cycles=1)
+    driver = driver_source(sfc_unit(model, search), Scenario("link", model), max_cycles=1)
     built = gcc(home, out, driver, out / "program")
     return "" if built.returncode == 0 else f"gcc: {built.stderr}"
 
@@ -206,7 +197,7 @@ def test_integers_meeting_reals_compile_and_link(home: Path, tmp_path: Path, tal
 
 def _compiled(home: Path, out: Path, model: Path) -> tuple[Unit, Path]:
     """The unit of ``model`` and the folder of its compiled C, ready to link with drivers."""
-    unit = _unit(model)
+    unit = sfc_unit(model, SEARCH)
     out.mkdir()
     source = out / "unit.st"
     source.write_text(generate("sfc", [model], search=SEARCH)[f"{unit.top.name}.st"])

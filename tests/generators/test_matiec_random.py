@@ -29,11 +29,11 @@ from plc import (
     iec2c,
     python_trace,
     sfc_trace,
+    sfc_unit,
     steps,
     streams,
 )
 from statecharts.random_charts import TICK, random_chart
-from test_matiec import _unit
 from tied_charts import tied_chart
 
 from lightrocks.app.loading import load_component
@@ -113,7 +113,7 @@ def steps_alike(
     except GenerationError as error:
         assert REFUSED in str(error), str(error)
         return "refused", [], tied
-    unit = _unit(model, [folder])
+    unit = sfc_unit(model, [folder])
     source = folder / "unit.st"
     source.write_text(text)
     compiled = iec2c(home, source, folder / "c")

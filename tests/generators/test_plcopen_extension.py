@@ -6,17 +6,12 @@ from __future__ import annotations
 import pytest
 from extension_units import ExtensionUnits, extension_units
 from lxml import etree
-from test_plcopen import NS, _cached_schema
+from plcopen_schema import NS
 
 
 @pytest.fixture(scope="module")
 def units(tmp_path_factory: pytest.TempPathFactory) -> ExtensionUnits:
     return extension_units(tmp_path_factory)
-
-
-@pytest.fixture(scope="module")
-def schema(tmp_path_factory: pytest.TempPathFactory) -> etree.XMLSchema:
-    return etree.XMLSchema(etree.parse(str(_cached_schema(tmp_path_factory.mktemp("sdist")))))
 
 
 def test_every_project_of_the_extension_validates(
