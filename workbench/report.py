@@ -9,7 +9,7 @@ import unicodedata
 from collections.abc import Callable, Sequence
 from importlib.metadata import version
 
-from lightrocks.workbench.cocos import CoCo
+from lightrocks.workbench.cocos import Code
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
@@ -52,7 +52,7 @@ def as_json(diagnostics: Sequence[Diagnostic]) -> str:
     return json.dumps(items, indent=2)
 
 
-def sarif(diagnostics: Sequence[Diagnostic], cocos: Sequence[CoCo]) -> str:
+def sarif(diagnostics: Sequence[Diagnostic], cocos: Sequence[Code]) -> str:
     rules = {c.code: c for c in cocos}
     used = sorted({d.code for d in diagnostics})
     document = {
@@ -133,7 +133,7 @@ FORMATS = (*_PLAIN, "sarif")
 
 
 def render(
-    form: str, diagnostics: Sequence[Diagnostic], cocos: Callable[[], Sequence[CoCo]]
+    form: str, diagnostics: Sequence[Diagnostic], cocos: Callable[[], Sequence[Code]]
 ) -> str:
     """The findings in one of :data:`FORMATS`. Only SARIF describes the rules it reports, so
     only it asks ``cocos`` for them (loading every CoCo takes a while)."""
