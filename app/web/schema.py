@@ -3,26 +3,24 @@ kind of request whose fields, with their types, say what it holds. A request tha
 fit is refused naming the field (a 400, see :mod:`.routes`); what passes is typed, so no
 handler behind it meets a missing key or a value of the wrong type.
 
-The types a field may have are those JSON brings: ``str``, ``int`` (not ``bool``), ``float``,
+The types a field may have are those the pages send: ``str``, ``int`` (not ``bool``),
 ``bool``, a ``Literal`` of texts, ``tuple[X, ...]`` for a list of any length and
-``tuple[X, Y]`` for one of fixed length (both from a JSON array), and ``X | None``. Fields
-a request holds that its schema does not name are left aside, as a form may send more.
+``tuple[X, Y]`` for one of fixed length (both from a JSON array). Fields a request holds
+that its schema does not name are left aside, as a form may send more.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import types
 from collections.abc import Mapping
-from typing import Any, Literal, TypeVar, Union, get_args, get_origin, get_type_hints
+from typing import Any, Literal, TypeVar, get_args, get_origin, get_type_hints
 
 T = TypeVar("T")
 
 NAMES = {
     str: ("a text", "text", "texts"),
     int: ("a whole number", "whole number", "whole numbers"),
-    float: ("a number", "number", "numbers"),
-    bool: ("true or false", "true or false", "trues or falses"),
+    bool: ("true or false", "true or false", "values true or false"),
 }
 """How a refusal names a value of each plain type: alone, in a fixed list, in any list."""
 
@@ -85,8 +83,6 @@ def described(hint: Any) -> str:
     origin, arguments = get_origin(hint), get_args(hint)
     if origin is Literal:
         return "one of " + ", ".join(_shown(a) for a in arguments)
-    if origin in (Union, types.UnionType):
-        return " or ".join("null" if a is type(None) else described(a) for a in arguments)
     if origin is tuple:
         if len(arguments) == 2 and arguments[1] is Ellipsis:
             return f"a list of {_plural(arguments[0])}"
@@ -105,18 +101,9 @@ def _plural(hint: Any) -> str:
 def _fitted(value: Any, hint: Any) -> Any:
     """``value`` when it has the type ``hint`` (a JSON array as a tuple), else _Mismatch."""
     origin, arguments = get_origin(hint), get_args(hint)
-    if hint is Any:
-        return value
     if origin is Literal:
         if any(type(value) is type(a) and value == a for a in arguments):
             return value
-        raise _Mismatch
-    if origin in (Union, types.UnionType):
-        for option in arguments:
-            try:
-                return _fitted(value, option)
-            except _Mismatch:
-                continue
         raise _Mismatch
     if origin is tuple:
         if not isinstance(value, list | tuple):
@@ -126,12 +113,8 @@ def _fitted(value: Any, hint: Any) -> Any:
         if len(value) != len(arguments):
             raise _Mismatch
         return tuple(_fitted(v, a) for v, a in zip(value, arguments, strict=True))
-    if hint is type(None):
-        if value is None:
-            return value
-        raise _Mismatch
-    if hint is float and isinstance(value, int) and not isinstance(value, bool):
-        return float(value)
+    if hint not in NAMES:
+        raise TypeError(f"a schema field of type {hint!r}, which JSON does not bring")
     if isinstance(value, hint) and (hint is bool or not isinstance(value, bool)):
         return value
     raise _Mismatch
