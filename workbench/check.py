@@ -30,7 +30,7 @@ class CheckContext:
 
     workspace: Workspace
     diagnostics: Diagnostics
-    _results: dict[type[Pass], Pass] = field(default_factory=dict, repr=False)
+    _results: dict[type[Pass], Pass] = field(default_factory=dict, init=False, repr=False)
 
     def result(self, kind: type[P]) -> P:
         """The pass ``kind`` of this run, computed the first time it is asked for."""

@@ -68,7 +68,15 @@ def _no_files(*_: object) -> object:
 
 
 def _language(*passes: type[Pass], cocos: tuple[CoCo, ...] = ()) -> Language:
-    return Language("counted", (), _no_files, _no_files, lambda unit: (), cocos, "", passes)
+    return Language(
+        name="counted",
+        extensions=(),
+        parse=_no_files,
+        format=_no_files,
+        declarations=lambda unit: (),
+        cocos=cocos,
+        passes=passes,
+    )
 
 
 @pytest.fixture
