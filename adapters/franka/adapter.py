@@ -208,8 +208,7 @@ class FrankaAdapter(TickingAdapter):
             self._tau = np.clip(self._tau + step, -EFFORT, EFFORT)
             control.writeOnce(self._torques(self._tau.tolist()))
         except AdapterError:
-            self._drop()
-            raise
+            raise  # the motion still runs: ``stopped`` ends it, and the robot holds
         except Exception as error:
             self._drop()
             raise link.fault(error, self.address) from None

@@ -91,6 +91,10 @@ def fault(error: BaseException, address: str) -> AdapterError:
     """One line for what libfranka raised inside the control loop."""
     name = type(error).__name__
     text = one_line(error)
+    if "User Stop pressed" in text:
+        return AdapterError(f"the robot at {address} was stopped by its user stop: {text}")
+    if name in ("ControlException", "CommandException") and "reflex" in text:
+        return AdapterError(f"the robot at {address} stopped with a reflex: {text}")
     if name == "ControlException":
         if "communication_constraints_violation" in text:
             return AdapterError(

@@ -26,6 +26,26 @@ import sys
 from lightrocks.app.franka_sim import FrankaSim
 sim = FrankaSim(sys.argv[1], address=sys.argv[2])
 sim.start()
+if len(sys.argv) > 3:  # another robot mode: from the start, or from the given physics step
+    # of the first motion on, that motion aborted with the matching status (user stop, reflex)
+    from franky_sim.franka_robot_protocol import BaseCommand, MoveStatus, RobotCommand, RobotMode
+    mode, after = getattr(RobotMode, "k" + sys.argv[3]), int(sys.argv[4])
+    user_stop = sys.argv[3] == "UserStopped"
+    status = MoveStatus.kEmergencyAborted if user_stop else MoveStatus.kReflexAborted
+    began = []
+    server = type(sim.server)
+    shipped = server.robot_state
+    def robot_state(self):
+        if self.current_motion_id and not began:
+            began.append(sim.steps)
+        faked = after == 0 or (began and sim.steps >= began[0] + after)
+        if faked and self.current_motion_id:
+            motion = self.current_motion_id
+            BaseCommand.send_response(self._tcp_socket, RobotCommand.kMove, motion, status)
+            self.stop_motion(send_preemption_signal=False)
+        state = shipped.fget(self)
+        return state.replace(robot_mode=mode) if faked else state
+    server.robot_state = property(robot_state)
 print("ready", flush=True)
 sim.serve()
 """
@@ -46,11 +66,16 @@ def address(slot: int) -> str:
 
 
 @contextmanager
-def simulator(scene: str, where: str) -> Iterator[subprocess.Popen[str]]:
-    """The protocol simulator with ``scene`` on ``where`` until the block ends."""
+def simulator(
+    scene: str, where: str, mode: str | None = None, after: int = 0
+) -> Iterator[subprocess.Popen[str]]:
+    """The protocol simulator with ``scene`` on ``where`` until the block ends; with
+    ``mode`` (``Reflex``, ``UserStopped``, …) its robot reports that mode from ``after``
+    physics steps on."""
     need_franka()
+    faked = [mode, str(after)] if mode is not None else []
     process = subprocess.Popen(
-        [sys.executable, "-c", SERVE, scene, where],
+        [sys.executable, "-c", SERVE, scene, where, *faked],
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,
