@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from behaviour.test_verify import broken
+from behaviour.broken_models import broken
 from lightrocks.app.cli import main
 from lightrocks.languages.lightrocks.behaviour.script import script_text
 from lightrocks.languages.lightrocks.behaviour.verify import verify

@@ -4,27 +4,13 @@ regions, history, choice and time events are explored without trouble."""
 
 from __future__ import annotations
 
-import json
-import shutil
 from pathlib import Path
 
 import pytest
 
+from behaviour.broken_models import EXAMPLES, broken
 from lightrocks.languages.lightrocks.behaviour.script import describe, script
 from lightrocks.languages.lightrocks.behaviour.verify import verify
-
-ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = ROOT / "examples"
-CORPUS = Path(__file__).with_name("corpus")
-
-
-def broken(case: str, tmp_path: Path) -> tuple[Path, Path, dict]:
-    """The examples with one model replaced by the corpus case's broken copy."""
-    root = tmp_path / "examples"
-    shutil.copytree(EXAMPLES, root)
-    expect = json.loads((CORPUS / case / "expect.json").read_text(encoding="utf-8"))
-    shutil.copyfile(CORPUS / case / expect["file"], root / expect["file"])
-    return root, root / expect["file"], expect
 
 
 def test_the_examples_verify_clean() -> None:

@@ -1,3 +1,3 @@
 """The browser and the monitor's launcher of the monitor's page tests, for the pages here."""
 
-from monitor.test_monitor_page import browser, launch  # noqa: F401
+from monitor.browser_page import browser, launch  # noqa: F401

@@ -12,7 +12,7 @@ import urllib.request
 from pathlib import Path
 
 import pytest
-from monitor.test_monitor_page import WAIT, Page, records
+from monitor.browser_page import WAIT, Page, records
 
 from diagram.models import EXAMPLES
 

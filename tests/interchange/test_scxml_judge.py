@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 from statecharts.random_charts import TICK, VARIABLES, random_chart
-from statecharts.test_sismic_differential import CHARTS as SISMIC_CHARTS
+from statecharts.sismic_charts import CHARTS as SISMIC_CHARTS
 
 from interchange.conftest import generated
 from interchange.scxml_judge import DEEP_HISTORY_OVER_A_FINAL, documented, run_both, same

@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from test_broken_frames import Session, frame
+from pipe_session import Session, frame
 
 from lightrocks.workbench.depth import MAX_DEPTH
 

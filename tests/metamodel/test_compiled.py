@@ -9,7 +9,7 @@ import pytest
 from arpeggio import EndOfFile, NonTerminal, Terminal
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_objects import PEG, ROOT, model_files, peg_grammars
+from peg_models import PEG, ROOT, model_files, peg_grammars
 from textx import TextXSyntaxError, metamodel_from_str
 
 from lightrocks.languages.domain import syntax as domain

@@ -2,27 +2,17 @@
 
 from __future__ import annotations
 
-import importlib
-import subprocess
 from pathlib import Path
 from typing import Any
 
 import pytest
+from peg_models import PEG, ROOT, model_files, peg_grammars
 from textx import metamodel_from_str
 
 from lightrocks.languages.domain import syntax as domain
 from lightrocks.languages.lightrocks import syntax as lightrocks
-from lightrocks.metamodel.grammar import GrammarExtension, parse, textx_metamodel
+from lightrocks.metamodel.grammar import parse, textx_metamodel
 from lightrocks.metamodel.objects import ObjectBuilder, eligible
-
-ROOT = Path(__file__).parents[2]
-
-
-def model_files() -> list[Path]:
-    listed = subprocess.run(
-        ["git", "ls-files", "*.lr", "*.lrd"], cwd=ROOT, capture_output=True, text=True
-    ).stdout.split()
-    return [ROOT / name for name in listed if "broken" not in name]
 
 
 def difference(ours: Any, textx: Any, path: str = "model") -> str | None:
@@ -47,17 +37,6 @@ def difference(ours: Any, textx: Any, path: str = "model") -> str | None:
         if found := difference(getattr(ours, name), getattr(textx, name), f"{path}.{name}"):
             return found
     return None
-
-
-PEG = ROOT / "extensions" / "lightrocks-peg"
-
-
-def peg_grammars(monkeypatch: pytest.MonkeyPatch) -> tuple[GrammarExtension, ...]:
-    """The syntax of the example extension, read from its source folder."""
-    monkeypatch.syspath_prepend(str(PEG))
-    requirements = importlib.import_module("lightrocks_peg.requirements.syntax")
-    arithmetic = importlib.import_module("lightrocks_peg.arithmetic.syntax")
-    return (requirements.GRAMMAR, arithmetic.GRAMMAR)
 
 
 @pytest.mark.parametrize("file", model_files(), ids=lambda f: str(f.relative_to(ROOT)))

@@ -10,8 +10,6 @@ test's temporary folder and, when $MONITOR_ARTIFACTS names a folder, copied ther
 from __future__ import annotations
 
 import json
-import os
-import shutil
 import subprocess
 import sys
 import time
@@ -20,7 +18,9 @@ import urllib.request
 from pathlib import Path
 
 import pytest
-from judges import missing
+
+from monitor.browser_page import WAIT, Page, records
+from monitor.long_traces import records as long_run
 
 pytest.importorskip("starlette", reason="the monitor needs the 'monitor' extra")
 pytest.importorskip("selenium", reason="the browser tests need selenium (the 'dev' extra)")
@@ -29,117 +29,8 @@ ROOT = Path(__file__).resolve().parents[2]
 SCREW_TASK = ROOT / "examples" / "screwing" / "tasks" / "ScrewTask.lr"
 SCREWED = ("--script", str(ROOT / "examples" / "screwing" / "screwed.dryrun.json"))
 """The dry run's outcomes of a run that screws the screw home, as MuJoCo gives them."""
-CHROMIUM = os.environ.get("CHROMIUM", shutil.which("chromium") or "")
-CHROMEDRIVER = os.environ.get("CHROMEDRIVER", shutil.which("chromedriver") or "")
-WAIT = 300.0
-"""Seconds a page may take to show what is expected (a limit, not a measurement)."""
 HIGHLIGHT = (1.0, 0.953, 0.769)
 """The fill of the innermost active state drawn (#fff3c4 in index.html)."""
-
-
-@pytest.fixture
-def launch(tmp_path: Path, tmp_path_factory):
-    """Start ``lightrocks`` with a monitor on a free port: (url, trace, process)."""
-    processes: list[subprocess.Popen] = []
-    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "cache")}
-
-    def start(*arguments: str) -> tuple[str, Path, subprocess.Popen]:
-        trace = tmp_path / f"run{len(processes)}.jsonl"
-        err = tmp_path / f"stderr{len(processes)}.txt"
-        command = [sys.executable, "-m", "lightrocks.app.cli", *arguments]
-        command += ["--monitor", "0"]
-        if arguments[0] == "run":
-            command += ["--trace", str(trace)]
-        with err.open("w") as stderr:
-            process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=stderr)
-        processes.append(process)
-        url = ""
-        while not url and process.poll() is None:
-            time.sleep(0.1)
-            lines = err.read_text().splitlines()
-            url = next(
-                (s.removeprefix("monitor: ") for s in lines if s.startswith("monitor: ")), ""
-            )
-        assert url, f"the monitor printed no URL: {err.read_text()}"
-        return url, trace, process
-
-    yield start
-    for process in processes:
-        process.kill()
-        process.wait()
-
-
-@pytest.fixture
-def browser():
-    if not (CHROMIUM and CHROMEDRIVER):
-        missing(
-            "chromium and chromedriver", "`make judges` (apt-get install chromium chromium-driver)"
-        )
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1400,1000"):
-        options.add_argument(flag)
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})  # CSP reports land here
-    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
-    yield driver
-    driver.quit()
-
-
-class Page:
-    """The monitor page as a user sees it."""
-
-    def __init__(self, browser, url: str) -> None:
-        from selenium.webdriver.support.ui import WebDriverWait
-
-        self.browser = browser
-        self.wait = WebDriverWait(browser, WAIT)
-        browser.get(url)
-        self.until(lambda: self.browser.find_elements("css selector", "#task g.node"))
-
-    def until(self, condition) -> None:
-        self.wait.until(lambda _: condition())
-
-    def text(self, id: str) -> str:
-        return self.browser.find_element("id", id).text
-
-    @property
-    def active(self) -> str:
-        return self.browser.find_element("id", "task").get_attribute("data-active")
-
-    def press(self, button: str) -> None:
-        self.browser.find_element("id", button).click()
-
-    def element(self, path: str):
-        """What shows the state ``path`` on the level in view: its box, or the level's frame."""
-        return next(
-            g
-            for g in self.browser.find_elements("css selector", "#task [data-path]")
-            if g.get_attribute("data-path") == path
-        )
-
-    def click(self, element, kind: str = "click") -> None:
-        """A click on an SVG group (Selenium's own click needs a visible rectangle); a
-        ``contextmenu`` click toggles a breakpoint."""
-        self.browser.execute_script(
-            "arguments[0].dispatchEvent(new MouseEvent(arguments[1], {bubbles: true}))",
-            element,
-            kind,
-        )
-
-    def screenshot(self, path: Path) -> Path:
-        self.browser.save_screenshot(str(path))
-        artifacts = os.environ.get("MONITOR_ARTIFACTS")
-        if artifacts:
-            Path(artifacts).mkdir(parents=True, exist_ok=True)
-            shutil.copy(path, Path(artifacts) / path.name)
-        return path
-
-
-def records(trace: Path) -> list[dict]:
-    return [json.loads(line) for line in trace.read_text().splitlines()]
 
 
 def test_the_page_keeps_its_token_out_of_sight_and_within_its_policy(launch, browser) -> None:
@@ -320,8 +211,6 @@ def test_replay_with_the_time_slider(launch, browser, tmp_path: Path) -> None:
 def test_a_long_replay_plays_in_time(launch, browser, tmp_path: Path) -> None:
     """Moving the slider on applies only the records it passes, and the log is laid out
     once per move: 20,000 skill spans replay from start to end well within the limit."""
-    from .test_long_traces import records as long_run
-
     trace = tmp_path / "long.jsonl"
     trace.write_text("".join(json.dumps(r) + "\n" for r in long_run(20_000)), encoding="utf-8")
     url, _, _ = launch("replay", str(trace))

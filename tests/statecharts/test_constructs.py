@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
+from statecharts.late_chart import LATE
 
 BLINK = """package d;
 
@@ -117,29 +118,6 @@ def test_time_events_at_one_deadline_fire_inner_and_internal_first(build) -> Non
     chart.advance(0.5)
     assert chart.n == 11
     assert chart.active_configuration == ("AtOnce", "Next")
-
-
-LATE = """package d;
-
-statechart Late {
-  parameters {
-    Integer n = 0;
-    Integer m = 0;
-    Integer k = 0;
-  }
-
-  initial state Outer {
-    initial state Wait;
-    state Done;
-    choice Which;
-    Wait -> Which after(500 ms);
-    Which -> Done [n == 1];
-  }
-  state Away;
-
-  Outer -> Away after(500 ms);
-}
-"""
 
 
 def test_a_choice_without_a_branch_that_holds_is_not_saved_by_a_later_time_event(build) -> None:

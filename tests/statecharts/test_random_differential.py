@@ -20,9 +20,9 @@ from sismic.model import MacroStep
 
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
+from statecharts.late_chart import LATE
 from statecharts.random_charts import TICK, VARIABLES, random_chart
 from statecharts.sismic_chart import Reference, to_sismic
-from statecharts.test_constructs import LATE
 
 CHARTS = 40
 SWEEP = 400

@@ -8,7 +8,7 @@ from collections.abc import Callable
 from typing import Any, Literal, get_args, get_origin, get_type_hints
 
 import pytest
-from monitor.test_monitor_page import browser  # noqa: F401
+from monitor.browser_page import browser  # noqa: F401
 
 from lightrocks.app.studio.operations import OPERATIONS
 

@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from lightrocks.languages.lightrocks.syntax import parse_statechart
-from studio.test_studio_page import Studio, launched
+from studio.studio_page import Studio, launched
 
 pytest.importorskip("starlette", reason="the studio needs the 'monitor' extra")
 pytest.importorskip("selenium", reason="the browser tests need selenium (the 'dev' extra)")
@@ -58,7 +58,7 @@ class Composer(Studio):
         from selenium.common.exceptions import StaleElementReferenceException
         from selenium.webdriver.support.ui import WebDriverWait
 
-        from studio.test_studio_page import WAIT
+        from studio.studio_page import WAIT
 
         self.browser = browser
         self.models = models
