@@ -20,7 +20,7 @@ from types import ModuleType
 from lightrocks.app import cache
 from lightrocks.app.cachedir import cache_root
 from lightrocks.app.errors import ModelError, RunError
-from lightrocks.app.rebinding import check_rebound, rebinding
+from lightrocks.app.rebinding import rebinding
 from lightrocks.app.robots import RobotChoice
 from lightrocks.generators.python import GENERATOR
 from lightrocks.metamodel import ast
@@ -95,10 +95,8 @@ def load_component(
     """Check the model, generate it (once per content) and import the class of its chart;
     with ``robot``, with the robot in the cell's robot slot."""
     rebound = rebinding(model, search_path, robot) if robot is not None else None
-    if rebound is None:
-        context = check([model], list(search_path))
-    else:
-        context = check_rebound(model, search_path, rebound)
+    substituted = rebound.substituted if rebound is not None else None
+    context = check([model], list(search_path), substituted=substituted)
     if context.diagnostics.has_errors:
         found = report.text(context.diagnostics.items)
         raise ModelError(f"checked with {rebound.description}\n{found}" if rebound else found)

@@ -10,9 +10,9 @@ from pathlib import Path
 from lightrocks.app.errors import ModelError, RunError
 from lightrocks.app.robots import RobotChoice
 from lightrocks.languages.domain import rebinding as language
-from lightrocks.languages.domain.rebinding import Rebinding, check_rebound
+from lightrocks.languages.domain.rebinding import Rebinding
 
-__all__ = ["Rebinding", "check_rebound", "rebinding"]
+__all__ = ["Rebinding", "rebinding"]
 
 
 def rebinding(model: Path, search_path: Sequence[Path], robot: RobotChoice) -> Rebinding | None:

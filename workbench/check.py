@@ -10,7 +10,7 @@ import gc
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TypeVar, cast
+from typing import Any, TypeVar, cast
 
 from lightrocks.workbench import checkcache
 from lightrocks.workbench.cocos import CoCo, Code
@@ -74,6 +74,7 @@ def load(
     texts: Mapping[Path, str] | None = None,
     only_given: bool = False,
     unchanged: Mapping[Path, Loaded] | None = None,
+    substituted: Mapping[Path, Any] | None = None,
 ) -> CheckContext:
     """Parse the models below ``paths`` and everything they import.
 
@@ -81,11 +82,13 @@ def load(
     With ``only_given``, CoCos report on the files below ``paths`` alone; what they import
     is loaded for its declarations. ``unchanged`` holds files loaded earlier and known not
     to have changed since: they are taken as they are instead of being read again.
+    ``substituted`` maps resolved paths to a text or a parsed unit that stands in for the
+    file in this load only: neither the parse cache nor the findings cache keeps it.
     """
     paths = list(paths)
     diagnostics = Diagnostics()
     roots = [*model_path, *(p for p in paths if p.is_dir())]
-    workspace = Workspace(ModelPath(roots), diagnostics, texts, unchanged)
+    workspace = Workspace(ModelPath(roots), diagnostics, texts, unchanged, substituted)
     files = []
     for path in paths:
         found = model_files(path, extensions())
@@ -108,17 +111,19 @@ def check(
     texts: Mapping[Path, str] | None = None,
     only_given: bool = False,
     unchanged: Mapping[Path, Loaded] | None = None,
+    substituted: Mapping[Path, Any] | None = None,
 ) -> CheckContext:
     """Load and run every CoCo; all findings end up in ``context.diagnostics``.
 
     The context of an earlier check with the same arguments is returned when everything
-    that check read is unchanged."""
+    that check read is unchanged; a check with ``substituted`` files (see :func:`load`) is
+    always run, and never remembered."""
     paths, model_path, texts = list(paths), list(model_path), texts or {}
     entry = checkcache.key(paths, model_path, only_given)
-    remembered = checkcache.recall(entry, texts)
+    remembered = None if substituted else checkcache.recall(entry, texts)
     if remembered is not None:
         return remembered
-    context = load(paths, model_path, texts, only_given, unchanged)
+    context = load(paths, model_path, texts, only_given, unchanged, substituted)
     gc.freeze()  # the loaded models live to the end: keep the collector from rescanning them
     try:
         run_checks(context)

@@ -46,8 +46,19 @@ def use_store(store: Store | None) -> None:
     _store = store
 
 
-def parse(language: Language, text: str, shown: str) -> Any:
-    """``language.parse(text, shown)``, answered from the cache when the content is known."""
+def parse(language: Language, text: str, shown: str, remember: bool = True) -> Any:
+    """``language.parse(text, shown)``, answered from the cache when the content is known.
+
+    Without ``remember`` the text is parsed afresh and its result kept nowhere: a text that
+    stands in for a file for one check only (see :func:`lightrocks.workbench.check.check`)."""
+    result = _remembered(language, text, shown) if remember else _parsed(language, text, shown)
+    if isinstance(result, SyntaxProblem):
+        raise result
+    return result
+
+
+def _remembered(language: Language, text: str, shown: str) -> Any:
+    """The result of a text from memory, else from the store, else parsed and kept in both."""
     key = _key(language, text, shown)
     result = _memory.get(key)
     if result is None:
@@ -57,8 +68,6 @@ def parse(language: Language, text: str, shown: str) -> Any:
             if _store is not None:
                 _store.put(key, result)
         _memory.put(key, result)
-    if isinstance(result, SyntaxProblem):
-        raise result
     return result
 
 

@@ -52,11 +52,13 @@ class Workspace:
         diagnostics: Diagnostics,
         texts: Mapping[Path, str] | None = None,
         unchanged: Mapping[Path, Loaded] | None = None,
+        substituted: Mapping[Path, Any] | None = None,
     ) -> None:
         self.model_path = model_path
         self.diagnostics = diagnostics
         self.texts = texts or {}  # unsaved editor contents that replace files on disk
         self.unchanged = unchanged or {}  # files known unchanged since an earlier load
+        self.substituted = substituted or {}  # a text or a unit per file, never cached
         self.files: dict[Path, Loaded | None] = {}
         self.symbols: dict[str, Symbol] = {}
         self._packages: dict[str, dict[str, Symbol]] = {}
@@ -84,11 +86,16 @@ class Workspace:
         if language is None:
             self.diagnostics.error(Position(shown, 1, 1), "LR0004", "not a model file")
             return None
-        text = self._read(path, shown)
+        substitute = self.substituted.get(path)
+        if substitute is not None:
+            self.reads.complete = False
+            if not isinstance(substitute, str):
+                return self._add(Loaded(path, language, substitute))
+        text = self._read(path, shown) if substitute is None else self._text(substitute, shown)
         if text is None:
             return None
         try:
-            unit = parsecache.parse(language, text, shown)
+            unit = parsecache.parse(language, text, shown, remember=substitute is None)
         except SyntaxProblem as problem:
             where = Position(shown, problem.line, problem.column)
             self.diagnostics.error(where, "LR0001", problem.message)
@@ -127,6 +134,11 @@ class Workspace:
                 Position(shown, line, 1), "LR0002", "not a text file: invalid UTF-8"
             )
             return None
+        return self._text(text, shown)
+
+    def _text(self, text: str, shown: str) -> str | None:
+        """The text of a model file, or ``None`` with a finding when it is none."""
+        where = Position(shown, 1, 1)
         if "\x00" in text:
             line = text[: text.index("\x00")].count("\n") + 1
             self.diagnostics.error(

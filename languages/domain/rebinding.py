@@ -3,8 +3,9 @@ checking and generating.
 
 The chosen type takes the slot only when it offers the interface of the slot's declared type
 (:mod:`languages.domain.interface`); then the cell's parsed unit is copied with the slot's
-type replaced and checked in place of the cell's file. So every value the model sends the
-robot is checked against the chosen type's safe ranges, at its own file:line:col, and the
+type replaced, for a check that takes it in place of the cell's file
+(``check(…, substituted=rebinding.substituted)``). So every value the model sends the robot
+is checked against the chosen type's safe ranges, at its own file:line:col, and the
 chosen type's defaults stand where the model leaves a parameter out; the parse and check
 caches only ever hold what the files say (the copy is never parsed, and a check given it is
 not remembered), and the generated code's cache key names the re-binding.
@@ -20,7 +21,7 @@ from lightrocks.languages.domain.interface import differences, interface
 from lightrocks.languages.domain.types import Types
 from lightrocks.languages.lightrocks.model import running_cell
 from lightrocks.metamodel import ast
-from lightrocks.workbench.check import CheckContext, load, run_checks
+from lightrocks.workbench.check import load
 from lightrocks.workbench.workspace import Loaded, Symbol, Workspace
 
 ROBOT_SLOT = "robot"
@@ -45,8 +46,14 @@ class NoDeviceType(RebindingError):
 class Rebinding:
     """The cell's file with its robot slot re-bound, and what that is in words."""
 
-    cell: Loaded
+    path: Path
+    unit: ast.DomainUnit
     description: str
+
+    @property
+    def substituted(self) -> dict[Path, ast.DomainUnit]:
+        """The re-bound unit in place of the cell's file, for ``check(substituted=…)``."""
+        return {self.path: self.unit}
 
 
 def rebinding(
@@ -85,14 +92,7 @@ def rebinding(
         cell.loaded.unit, declarations=_swapped(cell.loaded.unit.declarations, cell.node, node)
     )
     description = f"robot '{robot}': {offered.qualified_name} in {where}"
-    return Rebinding(Loaded(cell.loaded.path, cell.loaded.language, unit), description)
-
-
-def check_rebound(model: Path, search_path: Sequence[Path], rebound: Rebinding) -> CheckContext:
-    """Every check on ``model`` with the re-bound cell in place of its file."""
-    context = load([model], list(search_path), unchanged={rebound.cell.path: rebound.cell})
-    run_checks(context)
-    return context
+    return Rebinding(cell.loaded.path, unit, description)
 
 
 def _device_type(workspace: Workspace, cell: Loaded, robot: str, device_type: str) -> Symbol:
