@@ -93,7 +93,8 @@ def test_every_command_runs_where_only_the_distribution_is(
         _ok([sys.executable, "-m", "pip", "--python", str(installed / "python"), "check"])
     with subtests.test("--version"):
         assert run("lightrocks", "--version") == version("lightrocks")
-    for what in ("languages", "cocos", "generators", "adapters", "scenes", "robots"):
+    kinds = re.search(r"\{([\w,]+)\}", run("lightrocks", "list", "--help"))[1].split(",")
+    for what in kinds:
         with subtests.test("list", what=what):
             assert run("lightrocks", "list", what)
     with subtests.test("check"):
