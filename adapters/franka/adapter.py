@@ -69,7 +69,6 @@ class FrankaAdapter(TickingAdapter):
         AdapterOption("robot_ip", str, "the address of the robot (its FCI network)"),
         AdapterOption("confirm", bool, "ask once before the first motion"),
         AdapterOption("robot", str, "the registered Franka robot model (panda)"),
-        AdapterOption("seed", int, "unused: a real arm draws no random numbers"),
     )
 
     def __init__(
@@ -79,7 +78,6 @@ class FrankaAdapter(TickingAdapter):
         robot_ip: str | None = None,
         confirm: bool = False,
         robot: str = "panda",
-        seed: int = 0,
         limits: Limits | None = None,
     ) -> None:
         if not robot_ip:

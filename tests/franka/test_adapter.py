@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 from importlib.metadata import entry_points
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -22,6 +23,8 @@ from lightrocks.adapters.franka.limits import Limits
 from lightrocks.runtime.contract import AdapterError, Command, StopCondition
 
 ADDRESS = address(0)
+MODELS = Path(__file__).parent / "models"
+TOUCH = MODELS / "touch" / "Touch.lr"
 READY_TCP = np.array([0.4893, 0.0, 0.3166])
 """Where the Panda's ready pose puts the TCP (the simulator starts there)."""
 BLOCK_TOP = 0.15
@@ -152,6 +155,19 @@ def test_a_budget_spent_is_a_timeout_and_the_arm_holds(arm) -> None:
     held = arm.snapshot().robot.tcp.translation
     arm.execute([Command("camera", "localize", {"target": "block"}, [], 0.3)])
     assert np.allclose(arm.snapshot().robot.tcp.translation, held, atol=2e-3)
+
+
+@SIMULATED
+def test_the_python_api_runs_a_chart_on_the_arm_as_on_mujoco() -> None:
+    from lightrocks.app.pipeline import run_model
+
+    where = address(1)
+    with simulator("empty", where):
+        franka = run_model(TOUCH, [MODELS], adapter="franka", robot_ip=where)
+    mujoco = run_model(TOUCH, [MODELS], adapter="mujoco", robot="panda")
+    assert franka.outcome == mujoco.outcome == "contact"
+    assert franka.time == pytest.approx(mujoco.time, abs=0.3)
+    assert franka.measurements == {} and franka.goal is None  # no ground truth on an arm
 
 
 @pytest.mark.parametrize(
