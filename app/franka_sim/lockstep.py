@@ -13,10 +13,12 @@ outcome. Here the physics advances only when something moves:
   message each time, which libfranka needs to read one), with unchanged values.
 
 The hand's settle check, which franky-sim runs once per loop turn, runs once per physics step
-here. libfranka needs two states after it starts a motion before it answers (one to see the
-new mode, one for the first control call): while a started motion has not been answered yet,
-the state goes out again every ``HANDSHAKE_S``. Every state carries the external wrench
-estimated from the hand's contacts (:mod:`app.franka_sim.wrench`).
+here. When a motion starts, libfranka waits for a state with the new mode, then for a fresh
+one for its first control call (with a period of 0): these two go out ``HANDSHAKE_S`` apart,
+and then nothing until the client answers, since any further state would reach a slow client
+as a cycle of 2 ms. (A client that takes both at once gets a third after ``STALL_S``.) Every
+state carries the external wrench estimated from the
+hand's contacts (:mod:`app.franka_sim.wrench`).
 
 Only franky-sim's documented hooks are overridden; :data:`WRAPPED` names each attribute this
 module relies on, so that a test can say which one an upgrade removed.
@@ -40,8 +42,8 @@ HAND_BODY = "robot0_hand"
 """franky-sim's name of the first robot's hand body (its bodies are prefixed ``robot0_``)."""
 HEARTBEAT_S = 0.001
 """Wall-clock period [s] of the state while nothing moves (libfranka's 1 kHz)."""
-HANDSHAKE_S = 0.001
-"""Wall-clock period [s] of the state while a started motion has not been answered yet."""
+HANDSHAKE_S = 0.002
+"""Wall-clock delay [s] between the two states that start a motion (see the docstring)."""
 STALL_S = 0.5
 """A running motion whose client has not answered for this long [s] gets its state again:
 a lost datagram, or a client starved that long, which libfranka (it waits 1 s for a state)
@@ -102,7 +104,7 @@ class LockstepRobotServer(FrankaRobotServer):
     def __init__(self, robot: FrankaMujocoRobot, hostnames: Iterable[str]) -> None:
         self._sent = -1
         self._answered = False
-        self._motion_answered = False
+        self._handshake = 0
         self._motion = 0
         self._last_send = 0.0
         self._contacts: HandContacts | None = None
@@ -123,12 +125,12 @@ class LockstepRobotServer(FrankaRobotServer):
 
     def _reset_state(self) -> None:
         super()._reset_state()
-        self._sent, self._answered, self._motion_answered, self._motion = -1, False, False, 0
+        self._sent, self._answered, self._motion = -1, False, 0
+        self._handshake = 0
 
     def _handle_udp_command(self, command_data: bytes) -> None:
         if UDPCommand.from_bytes(command_data).message_id == self._sent:
             self._answered = True
-            self._motion_answered = True
         super()._handle_udp_command(command_data)
 
     def send_state(self) -> None:
@@ -158,10 +160,11 @@ class LockstepRobotServer(FrankaRobotServer):
 
     def poll(self) -> None:
         """Take what the client sent (commands, control messages) without stepping."""
-        motion = self.current_motion_id
-        if motion != self._motion:  # a motion started: the next states are its handshake
-            self._motion, self._motion_answered, self._answered = motion, False, False
         self.process_commands()
+        motion = self.current_motion_id
+        if motion != self._motion:
+            self._motion = motion
+            self._handshake = 2 if motion != 0 else 0
 
     def step_due(self) -> bool:
         """Whether the world advances one step now: the client answered the last state, or
@@ -177,9 +180,10 @@ class LockstepRobotServer(FrankaRobotServer):
         waited = now - self._last_send
         if self.current_motion_id == 0:
             return waited >= HEARTBEAT_S
-        if not self._motion_answered:
-            return waited >= HANDSHAKE_S
-        if waited < STALL_S:
+        if self._handshake == 2 or (self._handshake == 1 and waited >= HANDSHAKE_S):
+            self._handshake -= 1
+            return True
+        if self._handshake or waited < STALL_S:
             return False
         self.stalls += 1
         return True

@@ -142,7 +142,7 @@ CLIENT = """
 import json, sys, time
 import pylibfranka as franka
 
-address, seconds, speed = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
+address, seconds, speed, width = sys.argv[1], *map(float, sys.argv[2:5])
 for attempt in range(200):  # the first connect right after start-up may be refused
     try:
         robot = franka.Robot(address, franka.RealtimeConfig.kIgnore)
@@ -155,6 +155,10 @@ else:
 first = robot.read_once()
 report = {"first_q": list(first.q), "first_force": list(first.O_F_ext_hat_K),
           "mode": str(first.robot_mode)}
+if width > 0:  # the hand first, while the fingers touch nothing
+    hand = franka.Gripper(address)
+    report["moved"] = hand.move(width, 0.05)
+    report["width"] = hand.read_once().width
 if seconds > 0:
     control = robot.start_cartesian_velocity_control(franka.ControllerMode.CartesianImpedance)
     elapsed, forces = 0.0, []
@@ -175,9 +179,11 @@ print(json.dumps(report))
 """
 
 
-def run_client(address: str, seconds: float = 0.0, speed: float = 0.0) -> dict:
+def run_client(address: str, seconds: float = 0.0, speed: float = 0.0, width: float = 0.0) -> dict:
+    """The client's report: a hand move to ``width`` first if given, then the hand down at
+    ``speed`` for ``seconds`` if given."""
     done = subprocess.run(
-        [sys.executable, "-c", CLIENT, address, str(seconds), str(speed)],
+        [sys.executable, "-c", CLIENT, address, str(seconds), str(speed), str(width)],
         capture_output=True,
         text=True,
         timeout=CLIENT_TIMEOUT_S,
@@ -201,13 +207,14 @@ def test_a_libfranka_client_connects_and_reads_the_ready_pose() -> None:
 
 
 def guarded_descent(address: str) -> tuple[dict, bytes, int, int]:
-    """The hand moved down onto the empty scene's block (its top 16 cm below the TCP) at
-    8 cm/s for 2.2 s; the client's report, the world's state, its steps and stalls."""
+    """The hand opened to 7 cm, then moved down onto the empty scene's block (its top 16 cm
+    below the TCP) at 8 cm/s for 2.2 s; the client's report, the world's state, its steps and
+    stalls."""
     from lightrocks.app.franka_sim import FrankaSim
 
     with FrankaSim("empty", address=address) as sim:
         sim.serve_in_thread()
-        report = run_client(address, seconds=2.2, speed=0.08)
+        report = run_client(address, seconds=2.2, speed=0.08, width=0.07)
         time.sleep(0.05)
         physics = sim.physics().tobytes()
         steps, stalls = sim.steps, sim.stalls
@@ -218,6 +225,7 @@ def guarded_descent(address: str) -> tuple[dict, bytes, int, int]:
 def test_pressing_on_the_block_reads_a_force_along_z_and_two_runs_are_identical() -> None:
     _pylibfranka()
     first, physics, steps, stalls = guarded_descent(free_address())
+    assert first["moved"] and first["width"] == pytest.approx(0.07, abs=0.004)
     forces = first["forces"]
     assert forces[0] == 0.0  # free until the fingers meet the block ...
     assert min(forces) < -5.0  # ... then the arm pushes down on it (Franka's sign)
