@@ -8,11 +8,10 @@ import argparse
 import signal
 import sys
 import threading
-from importlib.util import find_spec
 
-from lightrocks.app.commands.common import COMMANDS, EXIT_FINDINGS, EXIT_OK, UsageError, complain
+from lightrocks.app.commands.common import COMMANDS, EXIT_FINDINGS, EXIT_OK, complain, require
 
-INSTALL = "pip install 'lightrocks[franka]'"
+PARTS = ("lightrocks.app.franka_sim",)
 
 
 def _configure_franka_sim(sub: argparse._SubParsersAction) -> None:
@@ -35,8 +34,7 @@ def _configure_franka_sim(sub: argparse._SubParsersAction) -> None:
 def cmd_franka_sim(args: argparse.Namespace) -> int:
     """Serve until Ctrl-C or SIGTERM, then exit 0; exit 1 for an unknown scene or cell, an
     address that is not loopback or is taken, or a scene the simulator cannot build."""
-    if find_spec("franky_sim") is None:
-        raise UsageError(f"franka-sim needs franky-sim: {INSTALL}")
+    require("franka-sim", PARTS, ("franky_sim",), "franka")
     from lightrocks.adapters.scene import SceneFault
     from lightrocks.app.franka_sim import AddressError, FrankaSim
     from lightrocks.app.franka_sim.cells import CellError, scene_of

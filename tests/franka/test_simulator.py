@@ -273,6 +273,17 @@ def test_bad_input_is_one_line_and_exit_1(args: list[str], message: str) -> None
     )
 
 
+def test_without_franky_sim_the_command_names_the_extra(monkeypatch, capsys) -> None:
+    from lightrocks.app import cli
+    from lightrocks.app.commands import common
+
+    real = common.find_spec
+    monkeypatch.setattr(common, "find_spec", lambda n: None if n == "franky_sim" else real(n))
+    assert cli.main(["franka-sim", "empty"]) == cli.EXIT_USAGE
+    errors = capsys.readouterr().err
+    assert "franka-sim needs franky_sim: pip install 'lightrocks[franka]'" in errors
+
+
 def test_a_taken_address_is_refused() -> None:
     address = free_address()
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as taken:
