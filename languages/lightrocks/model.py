@@ -8,7 +8,8 @@ once per check and shared by the CoCos and the generators.
 
 It is also the one place the language's derived facts are defined: the layers and which
 layer may use which, where each stereotype takes effect, the built-in outcomes, an action's
-command budget and the cell a statechart runs in. CoCos, generators, the studio and the
+command budget, the cell a statechart runs in, and what each element reads and writes
+(:mod:`~lightrocks.languages.lightrocks.access`). CoCos, generators, the studio and the
 language server ask it (``tests/languages/test_semantic_model.py`` fails on a second
 definition).
 """
@@ -18,6 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 
+from lightrocks.languages.lightrocks.access import Accesses, assigned
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import seconds
 from lightrocks.runtime import DEFAULT_BUDGET
@@ -192,6 +194,18 @@ class Component:
     @property
     def name(self) -> str:
         return self.statechart.name
+
+    @cached_property
+    def access(self) -> Accesses:
+        """What each element of this statechart reads and writes
+        (:mod:`~lightrocks.languages.lightrocks.access`), computed once per element."""
+        return Accesses()
+
+    @cached_property
+    def assigned(self) -> frozenset[str]:
+        """The parameters (a plain statechart's variables) some assignment of the chart
+        writes: they are not constant."""
+        return assigned(self.statechart)
 
     @cached_property
     def layers(self) -> list[ast.Stereotype]:
