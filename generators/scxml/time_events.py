@@ -17,6 +17,7 @@ from typing import NamedTuple
 from lightrocks.generators.scxml import elements
 from lightrocks.generators.scxml.chart_tree import Node
 from lightrocks.generators.scxml.names import Names
+from lightrocks.languages.lightrocks.access import assigned
 from lightrocks.languages.scxml.markup import q
 from lightrocks.metamodel import ast, units
 from lightrocks.metamodel.constants import fold
@@ -53,7 +54,7 @@ class TimeEvents:
         self.budget = budget
         self.refuse = refuse
         self.chart_id = names.state(chart.path)
-        self.assigned = _assigned(statechart)
+        self.assigned = assigned(statechart)
         self.armed = {n: self._armed(n) for n in [chart, *chart.descendants()]}
         timed = [len(n.path) for n, found in self.armed.items() if found]
         self.deepest = max(timed, default=0)
@@ -198,15 +199,6 @@ class TimeEvents:
             self.refuse(self.budget.position, "a <<timeout>> that is not a duration")
             return Timer(BUDGET, None, "")
         return Timer(BUDGET, float(seconds), "")
-
-
-def _assigned(statechart: ast.Statechart) -> set[str]:
-    """The parameters some action of the chart assigns."""
-    return {
-        n.target.name
-        for n in ast.walk(statechart)
-        if isinstance(n, ast.Assignment) and isinstance(n.target, ast.Name)
-    }
 
 
 def _substituted(node: ast.Expression, values: dict[str, ast.Expression]) -> ast.Expression:

@@ -365,7 +365,7 @@ class Flow:
         for index, argument in enumerate(arguments):
             key = argument.name or (names[index] if index < len(names) else "")
             bound[key] = argument.value
-        assigned = self.liveness.assigned(child)
+        assigned = child.assigned
         objects = self._objects(region) if region is not None else set()
         values, aliases = [], []
         for name, parameter in child.region.parameters.items():

@@ -5,11 +5,15 @@ finished skill from multiplying the configurations of the rest of the task.
 
 A read is a pair (object, attribute); the object is a scene object, a parameter name (a
 statechart's own variable, object ``""``), or ``None`` for an ``Object`` parameter whose
-object is not known here: then that attribute of every object is kept.
+object is not known here: then that attribute of every object is kept. The names each
+element reads and writes come from the semantic model (``Component.access``); only what
+steers the flow counts here: guards, conditions, assigned values and the arguments of
+imported states, not the arguments of a device command.
 """
 
 from __future__ import annotations
 
+from lightrocks.languages.lightrocks.access import Access
 from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.metamodel import ast
 
@@ -20,20 +24,8 @@ class Liveness:
     def __init__(self) -> None:
         self._reads: dict[str, frozenset[Read]] = {}
         self._entry: dict[str, frozenset[Read]] = {}
-        self._assigned: dict[str, frozenset[str]] = {}
         self._owns: dict[str, frozenset[Read]] = {}
         self._needed: dict[tuple, frozenset[Read]] = {}
-
-    def assigned(self, component: Component) -> frozenset[str]:
-        """Parameters the statechart assigns (a plain statechart's variables): not constant."""
-        key = component.qualified_name
-        if key not in self._assigned:
-            self._assigned[key] = frozenset(
-                node.target.name
-                for node in ast.walk(component.unit.statechart)
-                if isinstance(node, ast.Assignment) and isinstance(node.target, ast.Name)
-            )
-        return self._assigned[key]
 
     def reads(self, component: Component) -> frozenset[Read]:
         """What the statechart's own expressions read, in its own names."""
@@ -41,7 +33,7 @@ class Liveness:
             found: set[Read] = set()
             for region in component.region.regions():
                 for expression in _read_expressions(region):
-                    found |= _reads(expression)
+                    found |= _pairs(component.access(expression))
             self._reads[component.qualified_name] = frozenset(found)
         return self._reads[component.qualified_name]
 
@@ -138,45 +130,47 @@ def _read_expressions(region: Region) -> list[ast.Expression]:
     return found
 
 
-def _reads(expression: ast.Expression) -> set[Read]:
-    """(object, attribute) of every member path, ("", name) of every plain name."""
+def _pairs(access: Access) -> set[Read]:
+    """("", head) of every variable read, and (head, attribute) of every member path."""
     found: set[Read] = set()
-    for node in ast.walk(expression):
-        if isinstance(node, ast.Member) and isinstance(node.target, ast.Name):
-            found.add((node.target.name, node.name))
-        elif isinstance(node, ast.Name):
-            found.add(("", node.name))
+    for path in access.reads:
+        head, _, rest = path.partition(".")
+        found.add(("", head))
+        if rest:
+            found.add((head, rest.partition(".")[0]))
     return found
 
 
 def _written_first(component: Component) -> set[Read]:
     """Attributes every way into the statechart assigns before anything reads them."""
-    region = component.region
+    region, access = component.region, component.access
     starts = region.start_conditions
     read_first: set[Read] = set()
     for condition in starts:
-        read_first |= _reads(condition.expression) if condition.expression else set()
+        read_first |= _pairs(access(condition))
     ways: list[set[Read]] = []
     for condition in starts:
         for transition in region.transitions:
             if transition.source == condition.name:
-                if transition.guard is not None:
-                    read_first |= _reads(transition.guard)
-                ways.append(_assigned(transition.action or ()))
+                read_first |= _pairs(access(transition.guard))
+                ways.append(_assigned(component, transition.action or ()))
     entry: set[Read] = set()
     for action in region.actions:
         if action.kind == "entry":
-            entry |= _assigned(action.statements)
+            entry |= _assigned(component, action.statements)
     written = set.intersection(*ways) if ways else set()
     return (written | entry) - read_first
 
 
-def _assigned(statements) -> set[Read]:
+def _assigned(component: Component, statements: tuple[ast.Statement, ...]) -> set[Read]:
+    """The attributes (object and attribute, no deeper) the statements write without reading
+    them in the same statement."""
     found: set[Read] = set()
     for statement in statements:
-        target = statement.target if isinstance(statement, ast.Assignment) else None
-        if isinstance(target, ast.Member) and isinstance(target.target, ast.Name):
-            pair = (target.target.name, target.name)
-            if pair not in _reads(statement.value):
+        done = component.access(statement)
+        for path in done.writes:
+            head, _, attribute = path.partition(".")
+            pair = (head, attribute)
+            if attribute and "." not in attribute and pair not in _pairs(done):
                 found.add(pair)
     return found

@@ -17,7 +17,6 @@ class ParameterValues:
         self.models = models
         self._known: dict[tuple[str, str], Values] = {}
         self._sites: dict[str, list[tuple[Component, Region, ast.State]]] | None = None
-        self._assigned: dict[str, set[str]] = {}
 
     def of(self, component: Component, name: str) -> Values:
         key = (component.qualified_name, name)
@@ -28,7 +27,7 @@ class ParameterValues:
 
     def _values(self, component: Component, name: str) -> Values:
         parameter = component.region.parameters.get(name)
-        if parameter is None or name in self.assigned(component):
+        if parameter is None or name in component.assigned:
             return None
         found: set[float | bool] = set()
         sites = self.sites().get(component.qualified_name, [])
@@ -57,13 +56,6 @@ class ParameterValues:
         if isinstance(value, ast.Name) and _declares(region, value.name):
             return self.of(user, value.name)
         return None
-
-    def assigned(self, component: Component) -> set[str]:
-        """Parameters an action of the statechart assigns (a plain statechart's parameters
-        double as its variables)."""
-        if component.qualified_name not in self._assigned:
-            self._assigned[component.qualified_name] = _assigned_names(component)
-        return self._assigned[component.qualified_name]
 
     def sites(self) -> dict[str, list[tuple[Component, Region, ast.State]]]:
         """Every state that imports a statechart, by the statechart's qualified name."""
@@ -101,11 +93,3 @@ def _constant(expression: ast.Expression | None) -> float | bool | None:
     if isinstance(value, int | float):
         return value
     return None
-
-
-def _assigned_names(component: Component) -> set[str]:
-    return {
-        node.target.name
-        for node in ast.walk(component.unit.statechart)
-        if isinstance(node, ast.Assignment) and isinstance(node.target, ast.Name)
-    }

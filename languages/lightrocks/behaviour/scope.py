@@ -13,6 +13,7 @@ from lightrocks.languages.domain.types import (
     StructT,
     Type,
 )
+from lightrocks.languages.lightrocks.access import names_of
 from lightrocks.languages.lightrocks.behaviour.variables import (
     Variable,
     attribute_variable,
@@ -143,15 +144,3 @@ def _walk(kind: Type | None, names: list[str]) -> Type | None:
 def _free(chain: list[str], kind: Type | None, origin: str) -> Variable | None:
     sort = sort_of(kind) if kind is not None else None
     return Variable(".".join(chain), sort, kind=origin) if sort is not None else None
-
-
-def names_of(expression: ast.Expression) -> list[str] | None:
-    """``a.b.c`` as ``["a", "b", "c"]``; None for anything but names and members."""
-    names: list[str] = []
-    while isinstance(expression, ast.Member):
-        names.append(expression.name)
-        expression = expression.target
-    if not isinstance(expression, ast.Name):
-        return None
-    names.append(expression.name)
-    return names[::-1]
