@@ -13,6 +13,7 @@ import contextlib
 import json
 import os
 import select
+import signal
 import subprocess
 import sys
 import time
@@ -141,7 +142,9 @@ class Hand:
 
 def serve(address: str) -> None:
     """The hand's process: connect, then run each command (a line on stdin) to its end,
-    reporting the fingers' width and grasp on stdout whenever they change."""
+    reporting the fingers' width and grasp on stdout whenever they change. Ctrl-C at the
+    terminal reaches it too; the control loop's process decides what happens then."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     import pylibfranka
 
     from lightrocks.adapters.franka.link import one_line
