@@ -11,7 +11,7 @@ from pathlib import Path
 
 from lightrocks.workbench.extensions import language_extensions
 
-from .conftest import EXAMPLES, MODELS, PACKAGE, Environment
+from .peg_package import EXAMPLES, MODELS, PACKAGE, Environment
 
 TASK = MODELS / "peg" / "tasks" / "PegInHole.lr"
 INSERT = MODELS / "peg" / "skills" / "InsertPeg.lr"

@@ -13,7 +13,7 @@ import pytest
 from lightrocks.app.cli import main
 from lightrocks.workbench.files import JOURNAL, STAGING, recover
 
-from .conftest import DEADLINE
+from .fault_runs import DEADLINE
 
 ROOT = Path(__file__).resolve().parents[2]
 OLD = ROOT / "examples" / "plain"

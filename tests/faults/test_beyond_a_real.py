@@ -20,7 +20,7 @@ from lightrocks.metamodel.constants import overflow
 from lightrocks.runtime.contract import Vector3
 from lightrocks.runtime.safety import not_finite
 
-from .conftest import DOMAIN, within, write_models
+from .fault_runs import DOMAIN, within, write_models
 
 BEYOND = "beyond the largest number a Real holds"
 

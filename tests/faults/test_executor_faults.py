@@ -14,7 +14,7 @@ from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.cli import main
 from lightrocks.runtime.contract import AdapterError
 
-from .conftest import cli, trace_records, within, write_models
+from .fault_runs import cli, trace_records, within, write_models
 
 EXIT_DIVIDES = """package t;
 

@@ -13,7 +13,7 @@ import pytest
 from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.cli import main
 
-from .conftest import trace_records, within, write_models
+from .fault_runs import trace_records, within, write_models
 
 PICK = """package t;
 

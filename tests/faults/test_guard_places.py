@@ -12,7 +12,7 @@ import pytest
 from lightrocks.adapters.dryrun import DryRunAdapter
 from lightrocks.app.cli import main
 
-from .conftest import within, write_models
+from .fault_runs import within, write_models
 
 BAD = "x / z > 0"  # ZeroDivisionError once evaluated
 

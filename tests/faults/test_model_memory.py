@@ -13,7 +13,7 @@ import pytest
 
 from lightrocks.workbench.check import check
 
-from .conftest import write_models
+from .fault_runs import write_models
 
 SIZE = 5_000_000
 BOUND = 20  # traced peak per byte of the file; measured: 3 to 3.5

@@ -19,7 +19,7 @@ from lightrocks.generators.python import generator
 from lightrocks.runtime import ActionComponent, CompositeComponent
 from lightrocks.workbench.check import check
 
-from .conftest import within
+from .fault_runs import within
 
 EXAMPLES = 500
 

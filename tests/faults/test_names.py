@@ -13,7 +13,7 @@ import pytest
 from lightrocks.generators.python.names import RESERVED, identifier
 from lightrocks.runtime import CompositeComponent
 
-from .conftest import cli, within, write_models
+from .fault_runs import cli, within, write_models
 
 COUNTER = """package t;
 

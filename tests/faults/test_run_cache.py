@@ -15,7 +15,7 @@ from lightrocks.app import cache, cachedir
 from lightrocks.app.loading import component_class, generated_package
 from lightrocks.workbench.check import check
 
-from .conftest import DEADLINE, cli, within, write_models
+from .fault_runs import DEADLINE, cli, within, write_models
 
 CHART = """package t;
 

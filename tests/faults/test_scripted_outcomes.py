@@ -12,7 +12,7 @@ import pytest
 
 from lightrocks.adapters.dryrun import DryRunAdapter
 
-from .conftest import cli, within, write_models
+from .fault_runs import cli, within, write_models
 
 MOVE = """package t;
 

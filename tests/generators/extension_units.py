@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from extensions.conftest import EXAMPLES, MODELS, Environment, build_wheel
+from extensions.peg_package import EXAMPLES, MODELS, Environment, build_wheel
 
 UNIT = re.compile(r"<<(?:task|skill)>>\s+statechart\s+(\w+)")
 
