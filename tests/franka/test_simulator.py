@@ -240,6 +240,34 @@ def test_pressing_on_the_block_reads_a_force_along_z_and_two_runs_are_identical(
     assert physics_again == physics, reason
 
 
+@pytest.mark.slow
+def test_a_client_that_dies_mid_motion_leaves_the_server_serving() -> None:
+    """The dropped connection ends the motion; the world waits for the next client."""
+    _pylibfranka()
+    from lightrocks.app.franka_sim import READY, FrankaSim
+
+    with FrankaSim("empty", address=free_address()) as sim:
+        sim.serve_in_thread()
+        client = subprocess.Popen(
+            [sys.executable, "-c", CLIENT, sim.address, "5", "0.02", "0"],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        deadline = time.monotonic() + CLIENT_TIMEOUT_S
+        while sim.steps < 400 and time.monotonic() < deadline and client.poll() is None:
+            time.sleep(0.01)
+        client.kill()
+        client.wait()
+        assert sim.steps >= 400, "the motion never ran"
+        while sim.server.current_motion_id and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert sim.server.current_motion_id == 0
+        stopped = sim.steps
+        report = run_client(sim.address)
+        assert report["first_q"] != pytest.approx(READY, abs=1e-4)  # where the arm was left
+        assert sim.steps == stopped
+
+
 # -- the command ----------------------------------------------------------------------------------
 
 
