@@ -104,6 +104,8 @@ class FrankaAdapter(TickingAdapter):
         self.stats = LoopStats()
         self._time = 0.0
         self._tau = np.zeros(ARM_DOF)
+        self._fresh = False
+        """The next tick is the first of a motion."""
         self._control: Any = None
         self._robot: Any = None
         self._hand: Hand | None = None
@@ -196,7 +198,9 @@ class FrankaAdapter(TickingAdapter):
         try:
             state, period = control.readOnce()
             began = time.perf_counter()
-            self._take(state, period.to_sec())
+            # the first period of a motion reaches back to the state read before it started
+            self._take(state, DT if self._fresh else period.to_sec())
+            self._fresh = False
             mode = state.robot_mode.name
             if mode != "Move":
                 raise AdapterError(_stopped(mode, state, self.address))
@@ -317,6 +321,7 @@ class FrankaAdapter(TickingAdapter):
             self._control = self._robot.start_torque_control()
         except Exception as error:
             raise link.fault(error, self.address) from None
+        self._fresh = True
         self.hold()
 
     def _take(self, state: Any, period: float) -> None:

@@ -200,3 +200,39 @@ def test_the_limits_set_the_robots_reflexes_above_the_adapters_own() -> None:
     joint, wrench = Limits(force=40.0, torque=8.0).collision_thresholds()
     assert wrench == [50.0] * 3 + [10.0] * 3
     assert len(joint) == 7 and min(joint) > 0
+
+
+@SIMULATED
+def test_a_contact_force_beyond_the_limit_ends_the_motion_and_the_arm_holds(arm) -> None:
+    hard = down(arm, 0.2, speed=0.05, stiffness=[3000, 3000, 3000, 300, 300, 300])
+    never = [StopCondition("crushed", lambda s: s.robot.wrench.force.z > 500.0)]
+    command = Command(hard.device, hard.command, hard.args, never, 10.0)
+    with pytest.raises(AdapterError, match=r"contact force \d+\.\d N is above the limit 60"):
+        arm.execute([command])
+    held = arm.snapshot().robot.tcp.translation
+    (result,) = arm.execute([Command("camera", "localize", {"target": "block"}, [], 0.2)])
+    assert result.outcome == "timeout"  # the arm took the next command
+    assert np.allclose(arm.snapshot().robot.tcp.translation, held, atol=3e-3)
+
+
+@SIMULATED
+def test_two_runs_on_fresh_simulators_are_the_same_tick_for_tick() -> None:
+    from lightrocks.adapters.franka import FrankaAdapter
+
+    def once() -> list[tuple]:
+        ticks: list[tuple] = []
+        with simulator("empty", address(2)):
+            adapter = FrankaAdapter("empty", robot_ip=address(2))
+            try:
+                adapter.execute(
+                    [down(adapter, 0.2, speed=0.05, stiffness=[2000, 2000, 1000, 150, 150, 150])],
+                    on_tick=lambda s: ticks.append(
+                        (s.time, *s.robot.tcp.translation, s.robot.wrench.force.z)
+                    ),
+                )
+            finally:
+                adapter.close()
+        return ticks
+
+    first = once()
+    assert len(first) > 1000 and first == once()
