@@ -236,3 +236,26 @@ def test_two_runs_on_fresh_simulators_are_the_same_tick_for_tick() -> None:
 
     first = once()
     assert len(first) > 1000 and first == once()
+
+
+@pytest.mark.parametrize(
+    ("options", "words"),
+    [
+        (["--robot-ip", "172.16.0.2"], "--robot-ip and --confirm are for a real arm"),
+        (["--confirm"], "--robot-ip and --confirm are for a real arm"),
+        (
+            ["--adapter", "mujoco", "--robot", "panda", "--robot-ip", "172.16.0.2"],
+            "adapter 'mujoco' has no option robot_ip; adapters that have it: franka",
+        ),
+        (["--adapter", "franka", "--robot-ip", "172.16.0.2", "--seeds", "2"], "one run at a time"),
+        (["--adapter", "franka", "--robot-ip", "172.16.0.2", "--video", "v.mp4"], "cannot record"),
+        (["--adapter", "franka"], "a real arm needs its address: --robot-ip ADDRESS"),
+    ],
+)
+def test_the_run_commands_arm_options_are_checked(options, words, capsys) -> None:
+    need_franka()
+    from lightrocks.app.cli import main
+
+    assert main(["run", str(TOUCH), "--path", str(MODELS), *options]) == 2
+    error = capsys.readouterr().err
+    assert words in error and "Traceback" not in error
