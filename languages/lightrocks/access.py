@@ -31,6 +31,7 @@ class Access:
 
 
 NONE = Access()
+_NO_READS = (ast.Position, ast.Quantity, ast.BooleanLiteral, ast.StringLiteral)
 
 
 def access(element: Any) -> Access:
@@ -107,17 +108,29 @@ def _reads(node: Any) -> frozenset[str]:
 
 
 def _collect(node: Any, found: set[str]) -> None:
-    """Every variable ``node`` reads into ``found``: the longest name chain wins."""
+    """Every variable ``node`` reads into ``found``: the longest name chain counts, a call's
+    function does not. The usual nodes are taken apart by hand (a generic walk costs many
+    times as much on large models), the rest (a language extension's nodes) field by field."""
     chain = names_of(node)
     if chain is not None:
         found.add(".".join(chain))
+    elif isinstance(node, ast.Binary):
+        _collect(node.left, found)
+        _collect(node.right, found)
+    elif isinstance(node, ast.Unary):
+        _collect(node.operand, found)
     elif isinstance(node, ast.Call):
         for argument in node.arguments:
             _collect(argument.value, found)
-    elif isinstance(node, tuple | list):
-        for item in node:
+    elif isinstance(node, ast.Member):
+        _collect(node.target, found)
+    elif isinstance(node, ast.Index):
+        _collect(node.target, found)
+        _collect(node.index, found)
+    elif isinstance(node, ast.VectorLiteral | tuple | list):
+        for item in node.elements if isinstance(node, ast.VectorLiteral) else node:
             _collect(item, found)
-    elif is_dataclass(node) and not isinstance(node, ast.Position):
+    elif is_dataclass(node) and not isinstance(node, _NO_READS):
         for item in fields(node):
             if item.name != "position":
                 _collect(getattr(node, item.name), found)

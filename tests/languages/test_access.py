@@ -4,6 +4,7 @@ vectors, calls, indices and targets that are no variable."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -130,3 +131,28 @@ def test_a_nested_guard(tricky: ast.Statechart) -> None:
 
 def test_assigned_parameters_are_the_plain_names_written(tricky: ast.Statechart) -> None:
     assert assigned(tricky) == {"n", "x"}
+
+
+WHERE = ast.Position("<test>", 1, 1)
+
+
+@dataclass(frozen=True)
+class Twice(ast.ExtensionNode):
+    """An expression a language extension might add: its parts are read like any other."""
+
+    arguments: tuple[ast.Argument, ...]
+    position: ast.Position = WHERE
+
+    def text(self, expression):
+        return "twice(…)"
+
+    def infer(self, infer):
+        return None
+
+
+def test_an_extension_node_reads_its_parts() -> None:
+    node = Twice(
+        (ast.Argument(ast.Member(ast.Name("screw"), "depth")), ast.Argument(ast.Name("n")))
+    )
+    statement = ast.Assignment(ast.Name("x"), node)
+    assert access(statement) == Access(frozenset({"screw.depth", "n"}), frozenset({"x"}))

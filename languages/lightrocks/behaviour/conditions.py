@@ -17,9 +17,10 @@ from dataclasses import dataclass
 
 import z3
 
+from lightrocks.languages.lightrocks.access import access
 from lightrocks.languages.lightrocks.behaviour.judge import Judge, show
 from lightrocks.languages.lightrocks.behaviour.parameters import ParameterValues
-from lightrocks.languages.lightrocks.behaviour.scope import Scope, names_of
+from lightrocks.languages.lightrocks.behaviour.scope import Scope
 from lightrocks.languages.lightrocks.behaviour.terms import COMPARISONS, Terms, exact
 from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.languages.lightrocks.typing import Typing
@@ -383,29 +384,11 @@ def _same_effect(one: ast.Transition, other: ast.Transition) -> bool:
 
 
 def _reads_path(expression: ast.Expression, path: str) -> bool:
-    """Whether an expression reads ``path`` or a part of it (through operators, calls,
-    members and indexes; a generic walk costs a hundredfold on large models)."""
-    pending = [expression]
-    while pending:
-        node = pending.pop()
-        if isinstance(node, ast.Name | ast.Member):
-            chain = names_of(node)
-            if chain is not None:
-                text = ".".join(chain)
-                if text == path or path.startswith(f"{text}.") or text.startswith(f"{path}."):
-                    return True
-                continue
-        if isinstance(node, ast.Binary):
-            pending += [node.left, node.right]
-        elif isinstance(node, ast.Unary):
-            pending.append(node.operand)
-        elif isinstance(node, ast.Call):
-            pending += [a.value for a in node.arguments]
-        elif isinstance(node, ast.Member | ast.Index):
-            pending.append(node.target)
-        elif isinstance(node, ast.VectorLiteral):
-            pending += list(node.elements)
-    return False
+    """Whether an expression reads ``path``, a part of it, or something inside it."""
+    return any(
+        read == path or path.startswith(f"{read}.") or read.startswith(f"{path}.")
+        for read in access(expression).reads
+    )
 
 
 def _reads(formula: z3.ExprRef, path: str) -> bool:

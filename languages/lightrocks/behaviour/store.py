@@ -15,8 +15,9 @@ from fractions import Fraction
 
 import z3
 
+from lightrocks.languages.lightrocks.access import names_of
 from lightrocks.languages.lightrocks.behaviour.judge import Judge, constants
-from lightrocks.languages.lightrocks.behaviour.scope import Scope, names_of
+from lightrocks.languages.lightrocks.behaviour.scope import Scope
 from lightrocks.languages.lightrocks.behaviour.terms import Terms
 from lightrocks.languages.lightrocks.model import Region
 from lightrocks.languages.lightrocks.typing import Typing

@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 
 import z3
 
-from lightrocks.languages.lightrocks.behaviour.scope import Scope, names_of
+from lightrocks.languages.lightrocks.access import names_of
+from lightrocks.languages.lightrocks.behaviour.scope import Scope
 from lightrocks.languages.lightrocks.behaviour.variables import Variable
 from lightrocks.metamodel import ast
 
