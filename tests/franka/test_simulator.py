@@ -268,6 +268,48 @@ def test_a_client_that_dies_mid_motion_leaves_the_server_serving() -> None:
         assert sim.steps == stopped
 
 
+FRANKA_SIM = """
+import sys
+from franka_sim import FrankaSimServer
+
+server = FrankaSimServer(host=sys.argv[1])
+print("built", flush=True)
+server.start()
+"""
+
+
+@pytest.mark.slow
+def test_franka_sim_runs_offline_on_the_models_cut_from_franky_sims(tmp_path: Path) -> None:
+    """The strict judge's simulator in its own environment (``make judges``), started on a
+    loopback address without the network: a libfranka client reads its arm and hand."""
+    from judges import JUDGES
+
+    from lightrocks.app.franka_sim.franka_sim_models import write_models
+
+    python = JUDGES / "franka-sim-venv" / "bin" / "python"
+    if not python.exists():
+        missing("franka-sim", "make judges (it builds $LIGHTROCKS_JUDGES/franka-sim-venv)")
+    _pylibfranka()
+    arm, hand = write_models(tmp_path)
+    address = free_address()
+    environment = {**os.environ, "FR3_MJCF": str(arm), "FRANKA_HAND_MJCF": str(hand)}
+    server = subprocess.Popen(
+        [str(python), "-c", FRANKA_SIM, address],
+        env=environment,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+    )
+    try:
+        assert server.stdout.readline().strip() == "built"
+        report = run_client(address)
+    finally:
+        server.kill()
+        server.wait()
+    assert report["first_q"] == pytest.approx([0.0, 0.0, 0.0, -1.57, 0.0, 1.57, 0.785], abs=0.02)
+    assert report["mode"].endswith("Idle")
+
+
 # -- the command ----------------------------------------------------------------------------------
 
 
