@@ -9,6 +9,7 @@ port first turns that into a few seconds, and retries a refusal for a moment, si
 
 from __future__ import annotations
 
+import ipaddress
 import socket
 import time
 from typing import Any
@@ -60,14 +61,31 @@ def probe(address: str) -> None:
 
 
 def connect(address: str) -> Any:
-    """The robot at ``address`` (libfranka's real-time check off: on a real arm, run under a
-    real-time kernel as Franka documents; see docs/adapters.md)."""
+    """The robot at ``address``. libfranka's real-time scheduling is required for a real arm,
+    as libfranka does by default, and left out for a simulator on this machine (a loopback
+    address), which runs on any kernel."""
     franka = client()
     probe(address)
+    simulated = on_this_machine(address)
+    config = franka.RealtimeConfig.kIgnore if simulated else franka.RealtimeConfig.kEnforce
     try:
-        return franka.Robot(address, franka.RealtimeConfig.kIgnore)
+        return franka.Robot(address, config)
     except Exception as error:
+        if type(error).__name__ == "RealtimeException":
+            raise AdapterError(
+                f"cannot run the control loop for the robot at {address} in real time: "
+                f"{one_line(error)} (a real-time kernel and rtprio for this user are needed: "
+                "docs/adapters.md, 'Set-up on hardware')"
+            ) from None
         raise AdapterError(f"cannot connect to the robot at {address}: {one_line(error)}") from None
+
+
+def on_this_machine(address: str) -> bool:
+    """Whether ``address`` is a loopback one: a simulator, not an arm."""
+    try:
+        return ipaddress.ip_address(socket.gethostbyname(address)).is_loopback
+    except (OSError, ValueError):
+        return False
 
 
 def check_start(state: Any, address: str) -> None:

@@ -259,3 +259,10 @@ def test_the_run_commands_arm_options_are_checked(options, words, capsys) -> Non
     assert main(["run", str(TOUCH), "--path", str(MODELS), *options]) == 2
     error = capsys.readouterr().err
     assert words in error and "Traceback" not in error
+
+
+def test_real_time_scheduling_is_required_but_for_a_simulator_on_this_machine() -> None:
+    assert link.on_this_machine("127.0.0.1") and link.on_this_machine("127.40.3.9")
+    assert link.on_this_machine("localhost")
+    assert not link.on_this_machine("172.16.0.2")
+    assert not link.on_this_machine("no-such-robot.invalid")
