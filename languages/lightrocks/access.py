@@ -6,9 +6,9 @@ A variable is named by its path as written: a parameter or a plain statechart's 
 (``depth``), an attribute of a scene object (``screw.depth``), a device's sensor down to the
 leaf read (``robot.wrench.force.z``). A call's function is no read (built-in functions and
 device commands are not variables); its arguments are. Every analysis that needs to know
-what an element touches (the behaviour checker's liveness, the parameters that vary, the
-generators' constant folding) asks here, so the answer is one; :class:`Accesses` keeps each
-element's answer for its component (``Component.access``).
+what an element touches (the behaviour checker's liveness and guard shortcuts, the
+parameters that vary, the SCXML target's time events) asks here, so the answer is one;
+:class:`Accesses` keeps each element's answer for its component (``Component.access``).
 """
 
 from __future__ import annotations
@@ -25,9 +25,6 @@ class Access:
 
     reads: frozenset[str] = frozenset()
     writes: frozenset[str] = frozenset()
-
-    def __or__(self, other: Access) -> Access:
-        return Access(self.reads | other.reads, self.writes | other.writes)
 
 
 NONE = Access()
