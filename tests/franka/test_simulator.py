@@ -94,6 +94,22 @@ def test_every_wrapped_attribute_of_franky_sim_exists() -> None:
     )
 
 
+def test_franky_sims_fr3_splits_into_the_arm_and_hand_franka_sim_loads(tmp_path: Path) -> None:
+    import mujoco
+
+    from lightrocks.app.franka_sim.franka_sim_models import write_models
+
+    arm, hand = (mujoco.MjModel.from_xml_path(str(p)) for p in write_models(tmp_path))
+    assert [arm.joint(i).name for i in range(arm.njnt)] == [f"fr3_joint{i}" for i in range(1, 8)]
+    assert arm.body("fr3_link7") and arm.nu == 7
+    assert [hand.body(i).name for i in range(1, hand.nbody)] == [
+        "hand",
+        "left_finger",
+        "right_finger",
+    ]
+    assert hand.body_quat[1].tolist() == [0.0, 0.0, 0.0, 1.0]
+
+
 # -- the scene in franky-sim's world ------------------------------------------------------------
 
 
