@@ -7,22 +7,13 @@ from pathlib import Path
 
 import pytest
 
-from lightrocks.app.loading import component_class, generated_package
-from lightrocks.generators.scxml import document
 from lightrocks.generators.scxml.writer import Document
-from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.workbench import report
-from lightrocks.workbench.check import CheckContext, check
+from lightrocks.workbench.check import check
+
+from .pairs import generated
 
 _counter = itertools.count()
-
-
-def generated(context: CheckContext, file: Path, name: str, cache: Path) -> tuple[type, Document]:
-    """The runtime class and the SCXML document of the chart ``name`` of a checked model."""
-    component = analysis(context).models.component(name)
-    assert component is not None, name
-    package = generated_package(context, [file], cache)
-    return component_class(package, name), document(component)
 
 
 @pytest.fixture

@@ -18,7 +18,7 @@ import pytest
 from statecharts.random_charts import random_chart
 
 from interchange.canonical import canonical
-from interchange.conftest import generated
+from interchange.pairs import generated
 from interchange.scxml_judge import run_both, same
 from lightrocks.generators.scxml.writer import Document, Writer
 from lightrocks.languages.lightrocks.syntax import parse_statechart

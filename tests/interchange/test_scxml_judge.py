@@ -23,7 +23,7 @@ import pytest
 from statecharts.random_charts import TICK, VARIABLES, random_chart
 from statecharts.sismic_charts import CHARTS as SISMIC_CHARTS
 
-from interchange.conftest import generated
+from interchange.pairs import generated
 from interchange.scxml_judge import DEEP_HISTORY_OVER_A_FINAL, documented, run_both, same
 from lightrocks.workbench.check import check
 from lightrocks.workbench.generators import GenerationError
