@@ -17,7 +17,8 @@ PARTS = (
     "lightrocks.app.web",
     "lightrocks.app.web.page",
 )
-"""The studio's code and page, and the monitor, which serves the runs started from it."""
+"""The studio's code and page, the monitor, which serves the runs started from it, and the
+web floor (guard, request checks, diagram script) they share."""
 
 
 def _configure_studio(sub: argparse._SubParsersAction) -> None:
