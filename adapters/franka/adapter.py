@@ -89,7 +89,6 @@ class FrankaAdapter(TickingAdapter):
         self.address = robot_ip
         self.scene = scene or "empty"
         self.limits = limits or Limits()
-        self.confirm = confirm
         self.robot = registered_robot(robot)
         self._signatures = _signatures(self.robot)
         self._poses, self._objects = _scene_poses(self.scene, robot, self.robot.root)
