@@ -19,8 +19,9 @@ import pinocchio as pin
 
 from lightrocks.adapters import kernels
 from lightrocks.adapters.arm import ArmState
+from lightrocks.adapters.arm_commands import ArmCommands
 from lightrocks.adapters.control import CartesianImpedance, JointImpedance
-from lightrocks.adapters.kernels import DT, S_PEAK, S_R0, S_TURNED, S_YAW
+from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.robot import Robot
 from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE
 from lightrocks.adapters.scene_registry import objects
@@ -275,7 +276,7 @@ _SENSORS = {
 }
 
 
-class SimulatedCell(TickingAdapter):
+class SimulatedCell(ArmCommands, TickingAdapter):
     """``runtime.contract.Adapter`` for one cell (a robot arm, parallel gripper, camera) on a
     plant; the scene and the robot are registered names (adapters.scene_registry)."""
 
@@ -370,24 +371,8 @@ class SimulatedCell(TickingAdapter):
     def live(self) -> LiveSnapshot:
         return self._live
 
-    def ended(self, command: Command) -> None:
-        """The arm holds as soon as its command has ended; the other commands go on."""
-        if command.device == "robot":
-            self.hold()
-
     def stopped(self) -> None:
         self.hold()
-
-    def hold(self) -> None:
-        """Hold the current pose (or configuration) with the impedance of the last command."""
-        c = self.controller
-        if isinstance(c, CartesianImpedance):
-            here = self.arm.tcp * c.task
-            self.controller = CartesianImpedance(
-                self.arm, here, c.task, c.stiffness, c.ratio, 0.1, 1.0
-            )
-        else:
-            self.controller = JointImpedance(self.arm, self.arm.q[:ARM_DOF], c.stiffness, c.ratio)
 
     def close(self) -> None:
         if self.recorder is not None:
@@ -421,22 +406,8 @@ class SimulatedCell(TickingAdapter):
 
     # -- commands: each starts its command and returns (settled?, value) ------------------------
 
-    def _robot_moveCartesian(
-        self, c: Command, goal, task, stiffness, damping, speed, angular_speed, ref
-    ) -> Started:
-        if ref is not None:
-            goal = self.scene_pose(ref) * goal
-        task = pin.SE3.Identity() if task is None else task
-        self.controller = CartesianImpedance(
-            self.arm, goal, task, stiffness, damping, speed, angular_speed
-        )
-        self._start_command()
-        return Started(always, nothing, c.stop)
-
-    def _robot_moveJoint(self, c: Command, q, stiffness, damping) -> Started:
-        self.controller = JointImpedance(self.arm, q, stiffness, damping)
-        self._start_command()
-        return Started(always, nothing, c.stop)
+    def _goal(self, goal: pin.SE3, ref: str | None) -> pin.SE3:
+        return goal if ref is None else self.scene_pose(ref) * goal
 
     def _gripper_open(self, c: Command) -> Started:
         return self._grip(c, -OPEN_FORCE)
@@ -464,22 +435,6 @@ class SimulatedCell(TickingAdapter):
         return Started(always, lambda: pose, c.stop)
 
     # -- the 1 kHz loop ------------------------------------------------------------------------
-
-    @property
-    def turned(self) -> float:
-        """Signed rotation [rad] of the TCP about its own z since command start."""
-        return float(self.arm.sensing[S_TURNED])
-
-    @property
-    def peak_force(self) -> float:
-        """Largest magnitude [N] of the wrist force since command start."""
-        return float(self.arm.sensing[S_PEAK])
-
-    def _start_command(self) -> None:
-        self.travel_origin = self.arm.point
-        sensing = self.arm.sensing
-        sensing[S_TURNED] = sensing[S_PEAK] = sensing[S_YAW] = 0.0
-        sensing[S_R0 : S_R0 + 9] = self.arm.rotation.reshape(9)
 
     def _make_wrist_sensor(self) -> WristSensor:
         """Load model of the hand subtree (mass, centre of mass in the ft frame) from MuJoCo."""

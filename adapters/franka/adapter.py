@@ -31,6 +31,7 @@ import pinocchio as pin
 
 from lightrocks.adapters import kernels
 from lightrocks.adapters.arm import PinocchioArm
+from lightrocks.adapters.arm_commands import ArmCommands
 from lightrocks.adapters.control import CartesianImpedance, JointImpedance
 from lightrocks.adapters.devices import (
     DEFAULT_JOINT_DAMPING,
@@ -42,7 +43,7 @@ from lightrocks.adapters.devices import (
 from lightrocks.adapters.franka import link
 from lightrocks.adapters.franka.hand import Hand
 from lightrocks.adapters.franka.limits import Limits
-from lightrocks.adapters.kernels import DT, S_PEAK, S_R0, S_TURNED, S_YAW
+from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.robot_model import ARM_DOF, NV
 from lightrocks.adapters.scene_registry import load_model, objects
 from lightrocks.adapters.scene_registry import robot as registered_robot
@@ -61,7 +62,7 @@ LATE = 1.5 * DT
 """A robot state that comes later than this after the previous one: cycles were missed."""
 
 
-class FrankaAdapter(TickingAdapter):
+class FrankaAdapter(ArmCommands, TickingAdapter):
     """``runtime.contract.Adapter`` for a Franka arm, its hand and the cell's scene."""
 
     PERIOD = DT
@@ -69,6 +70,7 @@ class FrankaAdapter(TickingAdapter):
         AdapterOption("robot_ip", str, "the address of the robot (its FCI network)"),
         AdapterOption("confirm", bool, "ask once before the first motion"),
         AdapterOption("robot", str, "the registered Franka robot model (panda)"),
+        AdapterOption("limits", Limits, "workspace, speed, force and stiffness limits"),
     )
 
     def __init__(
@@ -154,16 +156,8 @@ class FrankaAdapter(TickingAdapter):
         impedance of its last command; outside it the robot's own controller holds it."""
         if self._hand is not None and not self._hand.state.done:
             self._hand.stop()
-        c = self.controller
-        if self._control is None:
-            return
-        if isinstance(c, CartesianImpedance):
-            here = self.arm.tcp * c.task
-            self.controller = CartesianImpedance(
-                self.arm, here, c.task, c.stiffness, c.ratio, 0.1, 1.0
-            )
-        else:
-            self.controller = JointImpedance(self.arm, self.arm.q[:ARM_DOF], c.stiffness, c.ratio)
+        if self._control is not None:
+            self.hold_arm()
 
     def close(self) -> None:
         self.stopped()
@@ -223,11 +217,6 @@ class FrankaAdapter(TickingAdapter):
         self._live.time = self._time
         return self._live
 
-    def ended(self, command: Command) -> None:
-        """The arm holds as soon as its command has ended; the other commands go on."""
-        if command.device == "robot":
-            self.hold()
-
     def stopped(self) -> None:
         """End the torque motion: the robot's own controller holds the arm where it is."""
         control, self._control = self._control, None
@@ -242,22 +231,6 @@ class FrankaAdapter(TickingAdapter):
         self._tau[:] = 0.0
 
     # -- commands: each starts its command and returns Started --------------------------------
-
-    def _robot_moveCartesian(
-        self, c: Command, goal, task, stiffness, damping, speed, angular_speed, ref
-    ) -> Started:
-        goal = self._goal(goal, ref)
-        task = pin.SE3.Identity() if task is None else task
-        self.controller = CartesianImpedance(
-            self.arm, goal, task, stiffness, damping, speed, angular_speed
-        )
-        self._start_command()
-        return Started(always, nothing, c.stop)
-
-    def _robot_moveJoint(self, c: Command, q, stiffness, damping) -> Started:
-        self.controller = JointImpedance(self.arm, q, stiffness, damping)
-        self._start_command()
-        return Started(always, nothing, c.stop)
 
     def _gripper_open(self, c: Command) -> Started:
         return self._grip(c, "open")
@@ -277,14 +250,6 @@ class FrankaAdapter(TickingAdapter):
         return Started(always, lambda: pose, c.stop)
 
     # -- sensors ------------------------------------------------------------------------------
-
-    @property
-    def turned(self) -> float:
-        return float(self.arm.sensing[S_TURNED])
-
-    @property
-    def peak_force(self) -> float:
-        return float(self.arm.sensing[S_PEAK])
 
     @property
     def width(self) -> float:
@@ -379,12 +344,6 @@ class FrankaAdapter(TickingAdapter):
         if pose is None:
             raise AdapterError(f"scene {self.scene!r} has no object {name!r}")
         return pose
-
-    def _start_command(self) -> None:
-        self.travel_origin = self.arm.point
-        sensing = self.arm.sensing
-        sensing[S_TURNED] = sensing[S_PEAK] = sensing[S_YAW] = 0.0
-        sensing[S_R0 : S_R0 + 9] = self.arm.rotation.reshape(9)
 
     def _drop(self) -> None:
         """After a fault: no more commands on this motion (the robot has stopped it)."""
