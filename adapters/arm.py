@@ -15,7 +15,7 @@ import numpy as np
 import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
-from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE, NV, TCP_SITE
+from lightrocks.adapters.robots.common import ARM_DOF, FT_SITE, NV, TCP_SITE
 
 
 class ArmState(ABC):

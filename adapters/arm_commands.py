@@ -15,7 +15,7 @@ import pinocchio as pin
 from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.control import CartesianImpedance, JointImpedance
 from lightrocks.adapters.kernels import S_PEAK, S_R0, S_TURNED, S_YAW
-from lightrocks.adapters.robot_model import ARM_DOF
+from lightrocks.adapters.robots.common import ARM_DOF
 from lightrocks.runtime.contract import Command
 from lightrocks.runtime.control_loop import Started, always, nothing
 

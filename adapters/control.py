@@ -16,7 +16,7 @@ import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters.arm import ArmState
-from lightrocks.adapters.robot_model import ARM_DOF
+from lightrocks.adapters.robots.common import ARM_DOF
 
 JOINT_SPEED = 0.5
 """Speed [rad/s] of the fastest joint of a moveJoint interpolation."""

@@ -22,8 +22,8 @@ from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.arm_commands import ArmCommands
 from lightrocks.adapters.control import CartesianImpedance, JointImpedance
 from lightrocks.adapters.kernels import DT
-from lightrocks.adapters.robot import Robot
-from lightrocks.adapters.robot_model import ARM_DOF, FT_SITE
+from lightrocks.adapters.robots.common import ARM_DOF, FT_SITE
+from lightrocks.adapters.robots.robot import Robot
 from lightrocks.adapters.scene_registry import objects
 from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.sensing import WristSensor

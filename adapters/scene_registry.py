@@ -1,7 +1,7 @@
 """Scenes and robots by name, from the ``lightrocks.scenes`` and ``lightrocks.robots`` entry
 points, so that a separate package adds a scene or a robot without touching this one.
 
-A scene is an ``adapters.scene.Scene`` object, a robot an ``adapters.robot.Robot``. A scene's
+A scene is an ``adapters.scene.Scene`` object, a robot an ``adapters.robots.robot.Robot``. A scene's
 MJCF includes the robot of the run by file name, ``<include file="robot.xml"/>``; that robot
 is offered under its own name too (``lwr.xml``), for scenes written before robots could be
 chosen, which then run with that robot only.
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import mujoco
 
-from lightrocks.adapters.robot import Robot
+from lightrocks.adapters.robots.robot import Robot
 from lightrocks.adapters.scene import Scene, SceneFault
 
 

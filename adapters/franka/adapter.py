@@ -44,7 +44,7 @@ from lightrocks.adapters.franka import link
 from lightrocks.adapters.franka.hand import Hand
 from lightrocks.adapters.franka.limits import Limits
 from lightrocks.adapters.kernels import DT
-from lightrocks.adapters.robot_model import ARM_DOF, NV
+from lightrocks.adapters.robots.common import ARM_DOF, NV
 from lightrocks.adapters.scene_registry import load_model, objects
 from lightrocks.adapters.scene_registry import robot as registered_robot
 from lightrocks.adapters.sensing import WristSensor

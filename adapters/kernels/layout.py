@@ -4,21 +4,21 @@ with the robot facts and the control period the compiled code is built with."""
 
 from __future__ import annotations
 
-from lightrocks.adapters import robot_model
+from lightrocks.adapters.robots import common
 
 ARM_DOF, NV = 7, 9
 FINGER_TRAVEL, GRIPPER_BAND = 0.04, 0.002
 """The robot facts the compiled code uses, repeated here because the kernels' cache is keyed on
-the kernel modules alone: a change in robot_model that is not made here too fails at import
-instead of running stale cached code."""
+the kernel modules alone: a change in adapters.robots.common that is not made here too fails
+at import instead of running stale cached code."""
 if (ARM_DOF, NV, FINGER_TRAVEL, GRIPPER_BAND) != (
-    robot_model.ARM_DOF,
-    robot_model.NV,
-    robot_model.FINGER_TRAVEL,
-    robot_model.GRIPPER_BAND,
+    common.ARM_DOF,
+    common.NV,
+    common.FINGER_TRAVEL,
+    common.GRIPPER_BAND,
 ):
     raise ImportError(
-        "adapters/kernels/layout.py must repeat the constants of adapters/robot_model.py"
+        "adapters/kernels/layout.py must repeat the constants of adapters/robots/common.py"
     )
 
 DT = 0.001

@@ -17,7 +17,7 @@ from lightrocks.adapters.arm import ArmState
 from lightrocks.adapters.kernels import DT
 from lightrocks.adapters.mujoco.arm import MujocoArm
 from lightrocks.adapters.mujoco.data_view import data_view, function_address
-from lightrocks.adapters.robot_model import (
+from lightrocks.adapters.robots.common import (
     ARM_DOF,
     FINGER_TRAVEL,
     FORCE_SENSOR,

@@ -26,7 +26,7 @@ import pinocchio as pin
 
 from lightrocks.adapters import kernels as k
 from lightrocks.adapters.arm import PinocchioArm, address, carrier, in_joint
-from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL, FT_SITE, NV, TCP_SITE
+from lightrocks.adapters.robots.common import ARM_DOF, FINGER_TRAVEL, FT_SITE, NV, TCP_SITE
 from lightrocks.adapters.scene import FixtureTwin
 from lightrocks.adapters.scene_registry import load_model
 from lightrocks.adapters.scene_registry import robot as registered_robot

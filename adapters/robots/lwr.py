@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import math
 
-from lightrocks.adapters.robot import MjcfRobot
-from lightrocks.adapters.robot_model import MODELS_DIR
+from lightrocks.adapters.robots.common import MODELS_DIR
+from lightrocks.adapters.robots.robot import MjcfRobot
 
 ROBOT = MjcfRobot(
     device_type="LWR",

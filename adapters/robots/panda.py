@@ -26,8 +26,8 @@ import math
 from importlib.metadata import PackageNotFoundError, distribution
 from pathlib import Path
 
-from lightrocks.adapters.robot import RobotDataMissing
-from lightrocks.adapters.urdf_robot import UrdfRobot
+from lightrocks.adapters.robots.robot import RobotDataMissing
+from lightrocks.adapters.robots.urdf import UrdfRobot
 
 PACKAGE = "example-robot-data"
 URDF = "share/example-robot-data/robots/panda_description/urdf/panda.urdf"

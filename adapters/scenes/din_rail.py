@@ -17,7 +17,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from lightrocks.adapters.robot_model import MODELS_DIR
+from lightrocks.adapters.robots.common import MODELS_DIR
 from lightrocks.adapters.scene import Scene
 
 TERMINALS = ("terminal1", "terminal2", "terminal3")

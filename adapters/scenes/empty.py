@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from lightrocks.adapters.robot_model import MODELS_DIR
+from lightrocks.adapters.robots.common import MODELS_DIR
 from lightrocks.adapters.scene import Scene
 
 SCENE = Scene(MODELS_DIR / "empty.xml")

@@ -18,7 +18,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from lightrocks.adapters.robot_model import MODELS_DIR
+from lightrocks.adapters.robots.common import MODELS_DIR
 from lightrocks.adapters.scene import Scene
 
 SCREW_PITCH = 0.003

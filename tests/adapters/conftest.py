@@ -7,7 +7,7 @@ from judges import missing
 
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
-from lightrocks.adapters.robot import Robot, RobotDataMissing
+from lightrocks.adapters.robots.robot import Robot, RobotDataMissing
 from lightrocks.adapters.scene_registry import robot
 
 ADAPTERS = {"mujoco": MujocoAdapter, "pinocchio": PinocchioAdapter}

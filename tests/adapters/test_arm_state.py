@@ -17,7 +17,7 @@ from lightrocks.adapters.kernels import SLOW_EVERY
 from lightrocks.adapters.mujoco.data_view import data_view
 from lightrocks.adapters.mujoco.plant import MujocoPlant
 from lightrocks.adapters.pinocchio.plant import PinocchioPlant, box_corners
-from lightrocks.adapters.robot_model import ARM_DOF, NV
+from lightrocks.adapters.robots.common import ARM_DOF, NV
 from lightrocks.adapters.robots.lwr import ROBOT as LWR
 
 TOLERANCE = 1e-9

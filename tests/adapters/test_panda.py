@@ -13,8 +13,8 @@ import pytest
 from lightrocks.adapters import scene_registry
 from lightrocks.adapters.mujoco import MujocoAdapter
 from lightrocks.adapters.pinocchio import PinocchioAdapter
-from lightrocks.adapters.robot import RobotDataMissing
 from lightrocks.adapters.robots import panda
+from lightrocks.adapters.robots.robot import RobotDataMissing
 from lightrocks.adapters.scene_registry import robot
 from lightrocks.runtime.contract import Command, StopCondition
 

@@ -6,8 +6,8 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from lightrocks.adapters.robot import Robot
-from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL, FT_SITE, NV, TCP_SITE
+from lightrocks.adapters.robots.common import ARM_DOF, FINGER_TRAVEL, FT_SITE, NV, TCP_SITE
+from lightrocks.adapters.robots.robot import Robot
 from lightrocks.adapters.scene_registry import UnknownRobot, robot, robots
 
 TOLERANCE = 1e-9

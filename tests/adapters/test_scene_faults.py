@@ -11,7 +11,7 @@ import pytest
 
 from lightrocks.adapters import scene_registry
 from lightrocks.adapters.mujoco import MujocoAdapter
-from lightrocks.adapters.robot_model import MODELS_DIR
+from lightrocks.adapters.robots.common import MODELS_DIR
 from lightrocks.adapters.scene import Scene, SceneFault
 from lightrocks.adapters.scene_registry import UnknownScene, load_model
 from lightrocks.runtime.contract import Command

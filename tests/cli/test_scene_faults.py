@@ -20,7 +20,7 @@ import mujoco
 import pytest
 
 from lightrocks.adapters import scene_registry
-from lightrocks.adapters.robot_model import MODELS_DIR
+from lightrocks.adapters.robots.common import MODELS_DIR
 from lightrocks.adapters.scene import Scene
 from lightrocks.app.cli import main
 

@@ -14,7 +14,7 @@ import pytest
 
 from lightrocks.adapters import scene_registry
 from lightrocks.adapters.mujoco import MujocoAdapter
-from lightrocks.adapters.robot import RobotDataMissing
+from lightrocks.adapters.robots.robot import RobotDataMissing
 from lightrocks.adapters.scene import Scene
 
 ROOT = Path(__file__).resolve().parents[2]

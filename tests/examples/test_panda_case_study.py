@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from judges import missing
 
-from lightrocks.adapters.robot import RobotDataMissing
+from lightrocks.adapters.robots.robot import RobotDataMissing
 from lightrocks.adapters.scene_registry import robot, scene
 from lightrocks.app.cli import main
 from lightrocks.app.pipeline import run_model

@@ -23,14 +23,14 @@ import numpy as np
 import pinocchio as pin
 
 from lightrocks.adapters.mjcf_text import mjcf_text
-from lightrocks.adapters.robot import Robot
-from lightrocks.adapters.robot_model import (
+from lightrocks.adapters.robots.common import (
     ARM_DOF,
     FORCE_SENSOR,
     FT_SITE,
     TCP_SITE,
     TORQUE_SENSOR,
 )
+from lightrocks.adapters.robots.robot import Robot
 
 CONTYPE, CONAFFINITY = 2, 1
 """As in lwr.xml: the robot touches the environment (contype 1) but never itself."""

@@ -1,6 +1,6 @@
 """The facts every robot shares, and where the scene models live.
 
-Each robot is an object of its own (adapters.robot, one module per robot under
+Each robot is an object of its own (adapters.robots.robot, one module per robot under
 adapters/robots/); what they all have in common is here. The native tick is compiled for
 ARM_DOF arm joints and two finger slides of FINGER_TRAVEL each (``NV`` = 9 joints, arm first;
 adapters.kernels.layout repeats these numbers). The hand carries the sites ``tcp`` and ``ft``,
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-MODELS_DIR = Path(__file__).parent / "models"
+MODELS_DIR = Path(__file__).parents[1] / "models"
 
 ARM_DOF = 7
 NV = 9

@@ -3,7 +3,7 @@ Pinocchio model, the names the adapters look up in both, its ready pose and its 
 object that a ``lightrocks.robots`` entry point registers (see adapters.scene_registry).
 
 Adapters ask the robot object and never switch on a robot's name. What every robot shares is
-in adapters.robot_model: ARM_DOF arm joints and two finger slides of FINGER_TRAVEL each (the
+in adapters.robots.common: ARM_DOF arm joints and two finger slides of FINGER_TRAVEL each (the
 native tick is compiled for them), sites ``tcp`` and ``ft`` on the hand, and the wrist's
 force and torque sensors ``ft_force``, ``ft_torque`` at ``ft``.
 """
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pinocchio as pin
 
-from lightrocks.adapters.robot_model import ARM_DOF, FINGER_TRAVEL
+from lightrocks.adapters.robots.common import ARM_DOF, FINGER_TRAVEL
 
 
 class RobotDataMissing(ValueError):
