@@ -156,3 +156,11 @@ def test_an_extension_node_reads_its_parts() -> None:
     )
     statement = ast.Assignment(ast.Name("x"), node)
     assert access(statement) == Access(frozenset({"screw.depth", "n"}), frozenset({"x"}))
+
+
+def test_a_plain_chart_assigns_its_counter_not_its_constant() -> None:
+    context = check([EXAMPLES / "plain"])
+    (turnstile,) = analysis(context).models.components
+    assert turnstile.assigned == {"passages"}
+    operating = turnstile.region.states["Operating"].state
+    assert turnstile.access(operating) == reads("passages", "capacity")
