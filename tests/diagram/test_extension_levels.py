@@ -9,8 +9,7 @@ import sysconfig
 from pathlib import Path
 
 import pytest
-from extensions.conftest import installed  # noqa: F401
-from extensions.peg_package import EXAMPLES, MODELS, Environment
+from extensions.peg_package import EXAMPLES, MODELS, Environment, installed  # noqa: F401
 
 
 def test_every_level_of_the_extension_models_is_drawn(

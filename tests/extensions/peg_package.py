@@ -12,6 +12,8 @@ import venv
 from collections.abc import Callable
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = ROOT / "extensions" / "lightrocks-peg"
 MODELS = PACKAGE / "models"
@@ -53,3 +55,12 @@ def build_wheel(folder: Path) -> Path:
     result = subprocess.run([*command, str(source)], capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stderr
     return next(folder.glob("lightrocks_peg-*.whl"))
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory: pytest.TempPathFactory) -> Environment:
+    """An environment with lightrocks-peg installed; the last test uninstalls it."""
+    folder = tmp_path_factory.mktemp("peg")
+    environment = Environment(folder / "venv")
+    environment.pip("install", "--no-deps", str(build_wheel(folder)))
+    return environment
