@@ -38,6 +38,9 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_monitor.py
 	$(BIN)/python benchmarks/bench_verify.py
 	$(BIN)/python benchmarks/bench_studio.py
+	@if $(BIN)/python -c "import importlib.util as u, sys; sys.exit(not (u.find_spec('pylibfranka') and u.find_spec('franky_sim')))"; \
+		then $(BIN)/python benchmarks/bench_franka.py; \
+		else echo "bench_franka: skipped, the franka extra is missing (pip install 'lightrocks[franka]')"; fi
 
 PICTURES := examples/screwing/skills/ScrewIn.lr examples/screwing/tasks/ScrewTask.lr \
 	examples/din_rail/tasks/AssembleRail.lr examples/din_rail_ahead/tasks/PlugTerminalAhead.lr
