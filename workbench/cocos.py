@@ -9,8 +9,9 @@ analysis makes for several codes come from a pass (:mod:`lightrocks.workbench.pa
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from types import ModuleType
 from typing import Any
 
@@ -54,3 +55,22 @@ def cocos_in(*modules: ModuleType) -> tuple[CoCo, ...]:
         for found in vars(module).values()
         if isinstance(found, CoCo) and found.check.__module__ == module.__name__
     )
+
+
+class Deferred(Sequence[Any]):
+    """A language's CoCos or passes, loaded when a check first asks for them: every command
+    reads the registered languages' light facts (extensions, library, implicit packages),
+    and only a check needs their checks, whose modules import solvers and graph libraries."""
+
+    def __init__(self, load: Callable[[], Sequence[Any]]) -> None:
+        self._load = load
+
+    @cached_property
+    def _items(self) -> tuple[Any, ...]:
+        return tuple(self._load())
+
+    def __getitem__(self, index: Any) -> Any:
+        return self._items[index]
+
+    def __len__(self) -> int:
+        return len(self._items)

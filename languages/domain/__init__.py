@@ -5,10 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from lightrocks.languages.domain import cocos
 from lightrocks.languages.domain.syntax import parse_domain
 from lightrocks.metamodel import ast
-from lightrocks.workbench.cocos import cocos_in
+from lightrocks.workbench.cocos import Deferred, cocos_in
 from lightrocks.workbench.languages import Language
 
 
@@ -22,6 +21,12 @@ def _format(text: str, file: str) -> str:
     return format_domain_text(text, file)
 
 
+def _cocos() -> tuple:
+    from lightrocks.languages.domain import cocos
+
+    return cocos_in(cocos)
+
+
 LIBRARY = Path(__file__).resolve().parent / "library"
 """The device library and the quantity types: package ``lightrocks``, seen by every file."""
 
@@ -31,7 +36,7 @@ LANGUAGE = Language(
     parse=parse_domain,
     format=_format,
     declarations=_declarations,
-    cocos=cocos_in(cocos),
+    cocos=Deferred(_cocos),
     description="robot domain interfaces: value types, devices, cells",
     library=LIBRARY,
     implicit_packages=("lightrocks",),

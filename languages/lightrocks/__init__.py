@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from lightrocks.languages.lightrocks.cocos import COCOS, PASSES
 from lightrocks.languages.lightrocks.syntax import parse_statechart
 from lightrocks.metamodel import ast
+from lightrocks.workbench.cocos import Deferred
 from lightrocks.workbench.languages import Language
 
 
@@ -20,13 +20,25 @@ def _format(text: str, file: str) -> str:
     return format_statechart_text(text, file)
 
 
+def _cocos() -> tuple:
+    from lightrocks.languages.lightrocks.cocos import COCOS
+
+    return COCOS
+
+
+def _passes() -> tuple:
+    from lightrocks.languages.lightrocks.cocos import PASSES
+
+    return PASSES
+
+
 LANGUAGE = Language(
     name="lightrocks",
     extensions=(".lr",),
     parse=parse_statechart,
     format=_format,
     declarations=_declarations,
-    cocos=COCOS,
-    passes=PASSES,
+    cocos=Deferred(_cocos),
+    passes=Deferred(_passes),
     description="tasks, skills and elemental actions as UML/P statecharts",
 )

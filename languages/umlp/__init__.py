@@ -15,16 +15,19 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from lightrocks.languages.umlp import cocos
 from lightrocks.languages.umlp.nodes import SCArtifact
 from lightrocks.languages.umlp.syntax import parse_sc
 from lightrocks.metamodel.ast import Position
 from lightrocks.metamodel.grammar import SyntaxProblem
-from lightrocks.workbench.cocos import cocos_in
+from lightrocks.workbench.cocos import Deferred, cocos_in
 from lightrocks.workbench.diagnostics import Diagnostics
 from lightrocks.workbench.languages import Language
 
-COCOS = cocos_in(cocos)
+
+def _cocos() -> tuple:
+    from lightrocks.languages.umlp import cocos
+
+    return cocos_in(cocos)
 
 
 def _declarations(unit: SCArtifact) -> list[tuple[str, Any]]:
@@ -43,7 +46,7 @@ LANGUAGE = Language(
     parse=parse_sc,
     format=_format,
     declarations=_declarations,
-    cocos=COCOS,
+    cocos=Deferred(_cocos),
     description="UML/P statecharts as MontiCore writes them (UMLStatecharts)",
 )
 
@@ -93,6 +96,6 @@ def check_sc(files: Iterable[Path], shown: Sequence[str] | None = None) -> SCChe
         loaded.append(_Loaded(file.resolve(), unit))
         units[file] = unit
     context = SCCheck(_Units(loaded), diagnostics, units=units)
-    for check in COCOS:
+    for check in LANGUAGE.cocos:
         diagnostics.extend(check.run(context))
     return context
