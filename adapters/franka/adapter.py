@@ -51,7 +51,7 @@ from lightrocks.adapters.sensing import WristSensor
 from lightrocks.runtime.contract import AdapterError, AdapterOption, Command, Wrench
 from lightrocks.runtime.control_loop import Started, TickingAdapter, always, nothing
 
-FRANKA_ROBOTS = ("panda",)
+FRANKA_ROBOTS = ("panda", "fr3")
 """The registered robots that are a Franka arm with the Franka Hand."""
 EFFORT = np.array([87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0])
 """The arm's joint torque limits [Nm]: a command is clipped to them."""
@@ -69,7 +69,7 @@ class FrankaAdapter(ArmCommands, TickingAdapter):
     OPTIONS = (
         AdapterOption("robot_ip", str, "the address of the robot (its FCI network)"),
         AdapterOption("confirm", bool, "ask once before the first motion"),
-        AdapterOption("robot", str, "the registered Franka robot model (panda)"),
+        AdapterOption("robot", str, "the registered Franka robot model (panda, fr3)"),
         AdapterOption("limits", Limits, "workspace, speed, force and stiffness limits"),
     )
 
