@@ -95,6 +95,11 @@ class FrankaAdapter(ArmCommands, TickingAdapter):
         self._signatures = _signatures(self.robot)
         self._poses, self._objects = _scene_poses(self.scene, robot, self.robot.root)
         model = self.robot.model()
+        self.joint_ranges = (
+            model.lowerPositionLimit[:ARM_DOF].copy(),
+            model.upperPositionLimit[:ARM_DOF].copy(),
+        )
+        """The arm's joint ranges from its own model: goals and the start are checked in them."""
         model.gravity.linear[:] = 0.0  # the robot compensates gravity itself
         self.arm = PinocchioArm(model)
         self.wrist = WristSensor(self.arm.sensing, 0.0, np.zeros(3))
@@ -265,7 +270,7 @@ class FrankaAdapter(ArmCommands, TickingAdapter):
         """Connect, check the arm's state, set its reflexes from the limits, start the hand."""
         self._robot = link.connect(self.address)
         state = self._robot.read_once()
-        link.check_start(state, self.address)
+        link.check_start(state, self.address, self.joint_ranges)
         joint, wrench = self.limits.collision_thresholds()
         contact_joint, contact_wrench = [0.5 * t for t in joint], [0.5 * f for f in wrench]
         try:
@@ -318,7 +323,7 @@ class FrankaAdapter(ArmCommands, TickingAdapter):
                 tcp_goal.translation, b["stiffness"], b["speed"], b["angular_speed"]
             )
         elif c.device == "robot" and c.command == "moveJoint":
-            self.limits.check_joint(b["q"], b["stiffness"])
+            self.limits.check_joint(b["q"], b["stiffness"], self.joint_ranges)
         elif c.device == "gripper" and c.command == "close":
             self.limits.check_grip(b["force"])
 

@@ -17,9 +17,9 @@ import numpy as np
 
 from lightrocks.runtime.contract import AdapterError
 
-JOINT_LOWER = (-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973)
-JOINT_UPPER = (2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973)
-"""The Panda's joint ranges [rad] (FR3: within them but for joints 4 and 6)."""
+JointRanges = tuple[np.ndarray, np.ndarray]
+"""The lower and upper ends [rad] of the arm's joints, from the robot's own model (the
+Panda's and the FR3's differ on joints 4 and 6)."""
 JOINT_MARGIN = math.radians(2.0)
 """A moveJoint goal or a start configuration this close to a joint's end is refused."""
 
@@ -81,9 +81,9 @@ class Limits:
                 f"{self.angular_speed} rad/s"
             )
 
-    def check_joint(self, q: np.ndarray, stiffness: np.ndarray) -> None:
+    def check_joint(self, q: np.ndarray, stiffness: np.ndarray, ranges: JointRanges) -> None:
         """Refuse a joint motion to a goal near or beyond a joint's end."""
-        joints_in_range(q, "goal")
+        joints_in_range(q, "goal", ranges)
         _at_most("stiffness", stiffness, self.joint_stiffness, ("Nm/rad",) * len(q))
 
     def check_grip(self, force: float) -> None:
@@ -111,9 +111,10 @@ class Limits:
             )
 
 
-def joints_in_range(q: np.ndarray, what: str) -> None:
+def joints_in_range(q: np.ndarray, what: str, ranges: JointRanges) -> None:
     """Every joint at least JOINT_MARGIN inside its range."""
-    for i, (value, low, high) in enumerate(zip(q, JOINT_LOWER, JOINT_UPPER, strict=True)):
+    lower, upper = ranges
+    for i, (value, low, high) in enumerate(zip(q, lower, upper, strict=True)):
         if not low + JOINT_MARGIN <= value <= high - JOINT_MARGIN:
             raise AdapterError(
                 f"{what}: joint {i + 1} at {math.degrees(value):.1f} deg is not within "

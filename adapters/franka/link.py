@@ -14,7 +14,7 @@ import socket
 import time
 from typing import Any
 
-from lightrocks.adapters.franka.limits import joints_in_range
+from lightrocks.adapters.franka.limits import JointRanges, joints_in_range
 from lightrocks.runtime.contract import AdapterError
 
 FCI_PORT = 1337
@@ -88,7 +88,7 @@ def on_this_machine(address: str) -> bool:
         return False
 
 
-def check_start(state: Any, address: str) -> None:
+def check_start(state: Any, address: str, ranges: JointRanges) -> None:
     """The arm's state allows a task: idle, no errors, every joint inside its range."""
     mode = state.robot_mode.name
     if mode != "Idle":
@@ -102,7 +102,9 @@ def check_start(state: Any, address: str) -> None:
         raise AdapterError(f"the robot at {address} is in mode {mode}, not Idle: {hint}")
     if state.current_errors:
         raise AdapterError(f"the robot at {address} reports errors: {state.current_errors}")
-    joints_in_range(list(state.q), f"the robot at {address} starts outside its joint ranges")
+    joints_in_range(
+        list(state.q), f"the robot at {address} starts outside its joint ranges", ranges
+    )
 
 
 def fault(error: BaseException, address: str) -> AdapterError:

@@ -15,7 +15,7 @@ from lightrocks.adapters.pinocchio import PinocchioAdapter
 from lightrocks.adapters.robots import fr3
 from lightrocks.adapters.robots.robot import RobotDataMissing
 from lightrocks.app.cli import main
-from lightrocks.runtime.contract import Command, StopCondition
+from lightrocks.runtime.contract import AdapterError, Command, StopCondition
 
 LOWER = (-2.9007, -1.8361, -2.9007, -3.077, -2.8763, 0.4398, -3.0508)
 UPPER = (2.9007, 1.8361, 2.9007, -0.1169, 2.8763, 4.6216, 3.0508)
@@ -72,3 +72,19 @@ def test_without_franky_sim_the_fr3_says_what_to_install(monkeypatch):
     monkeypatch.setattr(fr3, "distribution", absent)
     with pytest.raises(RobotDataMissing, match=r"franky-sim: pip install 'lightrocks\[franka\]'"):
         fr3.urdf()
+
+
+def test_the_franka_adapter_checks_goals_in_the_fr3s_own_joint_ranges(installed):
+    """Joint 6 at 0.3 rad is inside the Panda's range and outside the FR3's: the adapter's
+    check takes the ranges from the robot's model."""
+    from lightrocks.adapters.franka.limits import Limits
+
+    twin = installed("fr3").model()
+    ranges = (twin.lowerPositionLimit[:7], twin.upperPositionLimit[:7])
+    goal = np.array([0.0, -0.15, 0.0, -2.29, 0.0, 0.3, 0.6])
+    with pytest.raises(AdapterError, match=r"goal: joint 6 at 17\.2 deg is not within"):
+        Limits().check_joint(goal, np.full(7, 100.0), ranges)
+    panda = installed("panda").model()
+    Limits().check_joint(
+        goal, np.full(7, 100.0), (panda.lowerPositionLimit[:7], panda.upperPositionLimit[:7])
+    )

@@ -170,6 +170,13 @@ def test_the_python_api_runs_a_chart_on_the_arm_as_on_mujoco() -> None:
     assert franka.measurements == {} and franka.goal is None  # no ground truth on an arm
 
 
+PANDA_RANGES = (
+    np.array([-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973]),
+    np.array([2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973]),
+)
+"""The Panda's joint ranges [rad], as its model gives them to the adapter."""
+
+
 @pytest.mark.parametrize(
     ("mode", "words"),
     [
@@ -181,19 +188,19 @@ def test_the_python_api_runs_a_chart_on_the_arm_as_on_mujoco() -> None:
 def test_the_start_check_names_a_robot_in_the_wrong_mode(mode: str, words: str) -> None:
     state = SimpleNamespace(robot_mode=SimpleNamespace(name=mode), current_errors=[], q=[0] * 7)
     with pytest.raises(AdapterError, match=re.escape(words)):
-        link.check_start(state, "172.16.0.2")
+        link.check_start(state, "172.16.0.2", PANDA_RANGES)
 
 
 def test_the_start_check_refuses_errors_and_joints_at_their_ends() -> None:
     ready = [0.0, -0.15, 0.0, -2.29, 0.0, 2.14, 0.6]
     errors = SimpleNamespace(robot_mode=SimpleNamespace(name="Idle"), current_errors=["x"], q=ready)
     with pytest.raises(AdapterError, match="reports errors"):
-        link.check_start(errors, "172.16.0.2")
+        link.check_start(errors, "172.16.0.2", PANDA_RANGES)
     stretched = SimpleNamespace(
         robot_mode=SimpleNamespace(name="Idle"), current_errors=[], q=[*ready[:5], 3.75, 0.6]
     )
     with pytest.raises(AdapterError, match=r"joint 6 at 214\.9 deg is not within"):
-        link.check_start(stretched, "172.16.0.2")
+        link.check_start(stretched, "172.16.0.2", PANDA_RANGES)
 
 
 def test_the_limits_set_the_robots_reflexes_above_the_adapters_own() -> None:
