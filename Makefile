@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed
 # warning about the project; it is filtered by its text and nothing else is.
 INSTALL := PYTHONWARNINGS="ignore:Editable installation" $(BIN)/python -m pip install --quiet
 
-.PHONY: demo test judges lint format bench pictures vsix clean
+.PHONY: demo test test-franka judges lint format bench pictures vsix clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -19,7 +19,12 @@ demo: $(STAMP)
 	$(BIN)/lightrocks run examples/screwing/tasks/ScrewTask.lr --adapter mujoco
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -n auto --dist worksteal
+	$(BIN)/python -m pytest -n auto --dist worksteal --ignore=tests/franka
+
+# The Franka adapter judged by the protocol simulators (franky-sim, franka-sim from
+# make judges): every test talks to a simulated arm over libfranka's network protocol.
+test-franka: $(STAMP)
+	$(BIN)/python -m pytest -n auto --dist worksteal tests/franka
 
 # The outside judges of the suite (MatIEC, Beremiz, Chromium, the extension's node tooling),
 # made present as CI makes them; ../shared/tools must be beside the clone.
