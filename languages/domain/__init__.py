@@ -3,16 +3,24 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from lightrocks.languages.domain.syntax import parse_domain
-from lightrocks.metamodel import ast
 from lightrocks.workbench.cocos import Deferred, cocos_in
 from lightrocks.workbench.languages import Language
+
+if TYPE_CHECKING:
+    from lightrocks.metamodel import ast
 
 
 def _declarations(unit: ast.DomainUnit) -> list[tuple[str, Any]]:
     return [(declaration.name, declaration) for declaration in unit.declarations]
+
+
+def _parse(text: str, file: str) -> ast.DomainUnit:
+    """Parsed on first use, as the LightRocks language does (see its ``_parse``)."""
+    from lightrocks.languages.domain.syntax import parse_domain
+
+    return parse_domain(text, file)
 
 
 def _format(text: str, file: str) -> str:
@@ -33,7 +41,7 @@ LIBRARY = Path(__file__).resolve().parent / "library"
 LANGUAGE = Language(
     name="domain",
     extensions=(".lrd",),
-    parse=parse_domain,
+    parse=_parse,
     format=_format,
     declarations=_declarations,
     cocos=Deferred(_cocos),

@@ -2,16 +2,25 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from lightrocks.languages.lightrocks.syntax import parse_statechart
-from lightrocks.metamodel import ast
 from lightrocks.workbench.cocos import Deferred
 from lightrocks.workbench.languages import Language
+
+if TYPE_CHECKING:
+    from lightrocks.metamodel import ast
 
 
 def _declarations(unit: ast.StatechartUnit) -> list[tuple[str, Any]]:
     return [(unit.statechart.name, unit.statechart)]
+
+
+def _parse(text: str, file: str) -> ast.StatechartUnit:
+    """Parsed on first use: every command reads the registered languages' descriptors, only
+    some parse (an unchanged re-check answers from the findings cache)."""
+    from lightrocks.languages.lightrocks.syntax import parse_statechart
+
+    return parse_statechart(text, file)
 
 
 def _format(text: str, file: str) -> str:
@@ -35,7 +44,7 @@ def _passes() -> tuple:
 LANGUAGE = Language(
     name="lightrocks",
     extensions=(".lr",),
-    parse=parse_statechart,
+    parse=_parse,
     format=_format,
     declarations=_declarations,
     cocos=Deferred(_cocos),

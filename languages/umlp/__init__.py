@@ -13,15 +13,14 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from lightrocks.languages.umlp.nodes import SCArtifact
-from lightrocks.languages.umlp.syntax import parse_sc
-from lightrocks.metamodel.ast import Position
-from lightrocks.metamodel.grammar import SyntaxProblem
 from lightrocks.workbench.cocos import Deferred, cocos_in
 from lightrocks.workbench.diagnostics import Diagnostics
 from lightrocks.workbench.languages import Language
+
+if TYPE_CHECKING:
+    from lightrocks.languages.umlp.nodes import SCArtifact
 
 
 def _cocos() -> tuple:
@@ -34,6 +33,13 @@ def _declarations(unit: SCArtifact) -> list[tuple[str, Any]]:
     return []
 
 
+def _parse(text: str, file: str) -> SCArtifact:
+    """Parsed on first use, as the LightRocks language does (see its ``_parse``)."""
+    from lightrocks.languages.umlp.syntax import parse_sc
+
+    return parse_sc(text, file)
+
+
 def _format(text: str, file: str) -> str:
     from lightrocks.languages.umlp.printer import format_sc_text
 
@@ -43,7 +49,7 @@ def _format(text: str, file: str) -> str:
 LANGUAGE = Language(
     name="umlp",
     extensions=(".sc", ".aut"),  # .aut: MontiCore's former suffix, read with LR2106
-    parse=parse_sc,
+    parse=_parse,
     format=_format,
     declarations=_declarations,
     cocos=Deferred(_cocos),
@@ -78,6 +84,10 @@ def check_sc(files: Iterable[Path], shown: Sequence[str] | None = None) -> SCChe
     """Parse each file as a UML/P statechart, whatever its suffix (as MontiCore's parser
     takes any file it is given; SCFileExtension, LR2106, then warns), and run the CoCos of
     this language. ``shown`` names the files in findings (default: as given)."""
+    from lightrocks.languages.umlp.syntax import parse_sc
+    from lightrocks.metamodel.ast import Position
+    from lightrocks.metamodel.grammar import SyntaxProblem
+
     files = list(files)
     names = list(shown) if shown is not None else [str(f) for f in files]
     diagnostics = Diagnostics()
