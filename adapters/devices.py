@@ -125,7 +125,7 @@ _REQUIRED = object()
 Signatures = dict[tuple[str, str], dict[str, tuple[Any, Callable[[Any], Any]]]]
 
 
-def _signatures(robot: Robot) -> Signatures:
+def signatures(robot: Robot) -> Signatures:
     """The commands' parameters with their defaults (the stiffnesses are the robot's) and
     converters."""
     return {
@@ -149,13 +149,11 @@ def _signatures(robot: Robot) -> Signatures:
     }
 
 
-def _bind(
-    signatures: Signatures, device: str, command: str, args: Mapping[str, Any]
-) -> dict[str, Any]:
+def bind(table: Signatures, device: str, command: str, args: Mapping[str, Any]) -> dict[str, Any]:
     """Check and convert command arguments against the signature; defaults fill the rest."""
-    signature = signatures.get((device, command))
+    signature = table.get((device, command))
     if signature is None:
-        commands = sorted(c for d, c in signatures if d == device)
+        commands = sorted(c for d, c in table if d == device)
         if not commands:
             raise AdapterError(f"unknown device {device!r}; devices: robot, gripper, camera")
         raise AdapterError(f"device {device!r} has no command {command!r}; commands: {commands}")
@@ -276,6 +274,16 @@ _SENSORS = {
 }
 
 
+def frozen(live: Any, time: float) -> SimpleNamespace:
+    """A frozen copy of every sensor value of a cell's live views (robot, gripper, camera),
+    as ``snapshot()`` answers it on every adapter of such a cell."""
+    devices = {
+        name: SimpleNamespace(**{s: getattr(getattr(live, name), s) for s in sensors})
+        for name, sensors in _SENSORS.items()
+    }
+    return SimpleNamespace(time=time, **devices)
+
+
 class SimulatedCell(ArmCommands, TickingAdapter):
     """``runtime.contract.Adapter`` for one cell (a robot arm, parallel gripper, camera) on a
     plant; the scene and the robot are registered names (adapters.scene_registry)."""
@@ -303,7 +311,7 @@ class SimulatedCell(ArmCommands, TickingAdapter):
     ) -> None:
         kernels.warm_up()
         self.robot = registered_robot(robot)
-        self._signatures = _signatures(self.robot)
+        self._signatures = signatures(self.robot)
         self.plant = type(self).PLANT(scene, robot)
         self.scene = scene
         self.noise = (float(perception_noise[0]), float(perception_noise[1]))
@@ -342,18 +350,13 @@ class SimulatedCell(ArmCommands, TickingAdapter):
 
     def snapshot(self) -> SimpleNamespace:
         """A frozen copy of every sensor value now."""
-        live = self._live
-        devices = {
-            name: SimpleNamespace(**{s: getattr(getattr(live, name), s) for s in sensors})
-            for name, sensors in _SENSORS.items()
-        }
-        return SimpleNamespace(time=self.time, **devices)
+        return frozen(self._live, self.time)
 
     # -- the control loop (runtime.control_loop) -------------------------------------------
 
     def start(self, commands: Sequence[Command]) -> list[Started]:
         """Check every command's arguments against the device signatures, then start them."""
-        bound = [_bind(self._signatures, c.device, c.command, c.args) for c in commands]
+        bound = [bind(self._signatures, c.device, c.command, c.args) for c in commands]
         return [
             getattr(self, f"_{c.device}_{c.command}")(c, **b)
             for c, b in zip(commands, bound, strict=True)

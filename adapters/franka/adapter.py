@@ -37,8 +37,9 @@ from lightrocks.adapters.devices import (
     DEFAULT_JOINT_DAMPING,
     CameraView,
     RobotView,
-    _bind,
-    _signatures,
+    bind,
+    frozen,
+    signatures,
 )
 from lightrocks.adapters.franka import link
 from lightrocks.adapters.franka.hand import Hand
@@ -92,7 +93,7 @@ class FrankaAdapter(ArmCommands, TickingAdapter):
         self.scene = scene or "empty"
         self.limits = limits or Limits()
         self.robot = registered_robot(robot)
-        self._signatures = _signatures(self.robot)
+        self._signatures = signatures(self.robot)
         self._poses, self._objects = _scene_poses(self.scene, robot, self.robot.root)
         model = self.robot.model()
         self.joint_ranges = (
@@ -148,13 +149,7 @@ class FrankaAdapter(ArmCommands, TickingAdapter):
 
     def snapshot(self) -> SimpleNamespace:
         """A frozen copy of every sensor value of the last robot state read."""
-        live = self._live
-        live.time = self._time
-        devices = {
-            name: SimpleNamespace(**{s: getattr(getattr(live, name), s) for s in sensors})
-            for name, sensors in _SENSORS.items()
-        }
-        return SimpleNamespace(time=self._time, **devices)
+        return frozen(self.live(), self._time)
 
     def hold(self) -> None:
         """Stop every command: inside the control loop the arm holds where it is with the
@@ -178,7 +173,7 @@ class FrankaAdapter(ArmCommands, TickingAdapter):
         confirmation before the first motion, then start them in the robot's torque mode."""
         if self.fault:
             raise AdapterError(self.fault)
-        bound = [_bind(self._signatures, c.device, c.command, c.args) for c in commands]
+        bound = [bind(self._signatures, c.device, c.command, c.args) for c in commands]
         for c, b in zip(commands, bound, strict=True):
             self._check(c, b)
         if not self._asked:
@@ -397,13 +392,6 @@ class LoopStats:
 
     def step(self, seconds: float) -> None:
         self.steps.append(seconds)
-
-
-_SENSORS = {
-    "robot": ("tcp", "wrench", "q", "goalReached", "travel", "turned", "peakForce"),
-    "gripper": ("holding", "width", "done"),
-    "camera": ("done",),
-}
 
 
 def _stopped(mode: str, state: Any, address: str) -> str:
