@@ -4,7 +4,7 @@ with the run that shows it."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,11 +46,16 @@ class Verification:
 
 
 def verify(
-    paths: Iterable[Path], search_path: Iterable[Path] = (), strict: bool = False
+    paths: Iterable[Path],
+    search_path: Iterable[Path] = (),
+    strict: bool = False,
+    substituted: Mapping[Path, str] | None = None,
 ) -> Verification:
     """Check the models below ``paths`` (with ``search_path`` as further model-path roots);
-    when that finds no error, model-check every task, skill and plain statechart with an end."""
-    context = check(list(paths), list(search_path))
+    when that finds no error, model-check every task, skill and plain statechart with an end.
+    ``substituted`` maps resolved paths to texts that stand in for those files (as in
+    :func:`check`)."""
+    context = check(list(paths), list(search_path), substituted=substituted)
     result = Verification(list(context.diagnostics.items), strict=strict)
     if context.diagnostics.has_errors:
         return result
