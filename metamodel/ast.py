@@ -228,6 +228,21 @@ class Condition:
 
 
 @dataclass(frozen=True)
+class Property:
+    """``property name: formula;`` — what every run of the statechart guarantees, proved or
+    refuted by ``lightrocks verify``. ``kind`` is the formula's keyword; ``expressions`` are
+    its bracketed predicates in order (``after [p] eventually [q]``: p, q); ``outcome`` is
+    the end named by ``outcome ensures [p]``."""
+
+    name: str
+    kind: str  # "always" | "never" | "reachable" | "after" | "exclusive" | "ensures"
+    expressions: tuple[Expression, ...]
+    outcome: str = ""
+    position: Position = _position()
+    outcome_position: Position = _position()
+
+
+@dataclass(frozen=True)
 class Action:
     """``entry /``, ``exit /`` or ``do /`` with its statements."""
 
@@ -336,6 +351,7 @@ class Region:
 Element = (
     Parameter
     | Condition
+    | Property
     | Action
     | Invariant
     | State

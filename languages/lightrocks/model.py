@@ -144,6 +144,8 @@ class Region:
     events: dict[str, ast.Event] | None = None  # declared events (top region only)
     actions: list[ast.Action] = field(default_factory=list)
     invariants: list[ast.Invariant] = field(default_factory=list)
+    properties: list[ast.Property] = field(default_factory=list)
+    """What every run guarantees (``lightrocks verify``), inherited ones first."""
     extensions: list[object] = field(default_factory=list)
     """Elements of language extensions (workbench.extensions), inherited ones first."""
     parent: Region | None = None
@@ -359,6 +361,7 @@ class ModelSet:
             region.pseudostates.update(base.pseudostates)
             region.internal.extend(base.internal)
             region.invariants.extend(base.invariants)
+            region.properties.extend(base.properties)
             region.extensions.extend(base.extensions)
             region.orthogonal = base.orthogonal
             if base.events is not None:
@@ -392,6 +395,8 @@ class ModelSet:
                 own_actions.append(element)
             elif isinstance(element, ast.Invariant):
                 region.invariants.append(element)
+            elif isinstance(element, ast.Property):
+                region.properties.append(element)
             else:
                 region.extensions.append(element)
         overridden = {a.kind for a in own_actions}

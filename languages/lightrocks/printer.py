@@ -76,6 +76,9 @@ def _element(writer: Writer, node: ast.Element | ast.ParameterBlock | ast.EventB
         case ast.Condition(kind=kind, name=name, expression=condition):
             writer.item(where, "condition")
             writer.line([f"{kind} condition {name}{_bracketed(condition)};"], where.line)
+        case ast.Property():
+            writer.item(where, "property")
+            writer.line([f"property {node.name}: {_formula(node)};"], where.line)
         case ast.State():
             _state(writer, node)
         case ast.Region(name=name):
@@ -149,6 +152,16 @@ def _transition(writer: Writer, node: ast.Transition) -> None:
 def _stimulus(node: ast.Transition | ast.InternalTransition) -> str:
     args = node.stimulus_arguments
     return node.stimulus + (f"({', '.join(map(expression, args))})" if args else "")
+
+
+def _formula(node: ast.Property) -> str:
+    """A property's formula: its keyword around its bracketed predicates."""
+    parts = [f"[{expression(e)}]" for e in node.expressions]
+    if node.kind == "ensures":
+        return f"{node.outcome} ensures {parts[0]}"
+    if node.kind == "after":
+        return f"after {parts[0]} eventually {parts[1]}"
+    return f"{node.kind} {', '.join(parts)}"
 
 
 def _bracketed(node: ast.Expression | None) -> str:

@@ -37,6 +37,20 @@ class LightRocksConverter(Converter):
             node.kind, node.name, self.optional(node.expression), self.position(node)
         )
 
+    def rule_Property(self, node: Any) -> ast.Property:
+        formula = node.formula
+        parts = [formula.expression, getattr(formula, "response", None)]
+        parts += list(getattr(formula, "others", ()))
+        outcome = getattr(formula, "outcome", "")
+        return ast.Property(
+            node.name,
+            formula.kind,
+            tuple(self.convert(p) for p in parts if p is not None and p != ""),
+            outcome,
+            self.position(node),
+            self.position(formula) if outcome else ast.NOWHERE,
+        )
+
 
 def grammar_extensions() -> tuple[GrammarExtension, ...]:
     return tuple(e.grammar for e in extensions_of("lightrocks"))

@@ -41,6 +41,7 @@ from lightrocks.languages.domain.types import (
     quantity_of,
 )
 from lightrocks.languages.lightrocks.model import Component, ModelSet, Region, visible_cells
+from lightrocks.languages.lightrocks.properties import predicate_names
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.constants import beyond_a_real, overflow
 from lightrocks.metamodel.units import ONE, UnitError, lookup
@@ -143,6 +144,11 @@ class Typing:
                 self.boolean(condition.expression, env, f"condition '{condition.name}'")
         for invariant in region.invariants:
             self.boolean(invariant.expression, env, "invariant")
+        if region.properties:  # predicates name states and outcomes too; values come first
+            named = {**predicate_names(region), **env}
+            for own in (p for p in region.properties if p.position.file == _file(loaded)):
+                for predicate in own.expressions:
+                    self.boolean(predicate, named, f"property '{own.name}'")
         for info in region.states.values():
             if info.state.invariant is not None:
                 self.boolean(info.state.invariant, env, f"invariant of '{info.name}'")
