@@ -1,7 +1,8 @@
 """What the predicates of a property (``property name: formula;``) may name besides the
 values of the statechart: its own states (true while active) and its outcomes (true at the
-moment the run ends with it). Typing reads these names as Booleans; the model checker
-(:mod:`.behaviour.properties`) evaluates them on each configuration it explored.
+moment the run ends with it, ``error`` included). Typing reads these names as Booleans; the
+model checker (:mod:`.behaviour.properties`) evaluates them on the configurations it
+explored.
 """
 
 from __future__ import annotations
@@ -41,5 +42,10 @@ def predicate_names(region: Region) -> dict[str, Type]:
     """The states and outcomes of the chart of ``region``, as the Booleans a predicate reads."""
     chart = top(region)
     names = dict.fromkeys(state_names(chart), BOOLEAN)
-    names.update(dict.fromkeys(chart.outcomes, BOOLEAN))
+    names.update(dict.fromkeys(outcome_names(chart), BOOLEAN))
     return names
+
+
+def outcome_names(region: Region) -> tuple[str, ...]:
+    """The outcomes a run of the chart may end with: its own, and ``error``."""
+    return (*region.outcomes, "error")

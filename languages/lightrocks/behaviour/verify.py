@@ -18,6 +18,12 @@ from lightrocks.languages.lightrocks.behaviour.checker import (
 from lightrocks.languages.lightrocks.behaviour.flow import Flow
 from lightrocks.languages.lightrocks.behaviour.judge import SOLVER_TURN
 from lightrocks.languages.lightrocks.behaviour.liveness import Liveness
+from lightrocks.languages.lightrocks.behaviour.properties import (
+    REFUTED,
+    UNDECIDED,
+    Properties,
+    PropertyLiveness,
+)
 from lightrocks.workbench.check import check
 from lightrocks.workbench.diagnostics import Diagnostic, Severity
 
@@ -26,6 +32,8 @@ SEVERITY = {
     "LR0702": Severity.ERROR,
     "LR0703": Severity.WARNING,
     "LR0704": Severity.WARNING,
+    **dict.fromkeys(REFUTED.values(), Severity.ERROR),
+    UNDECIDED: Severity.WARNING,
 }
 
 
@@ -72,7 +80,8 @@ def _model_check(a: object, result: Verification) -> None:
     for component in sorted(a.models.components, key=lambda c: c.qualified_name):
         if component.layer == "action" or not component.region.states:
             continue
-        flow = Flow(a.typing, component, liveness)
+        stated = component.region.properties
+        flow = Flow(a.typing, component, PropertyLiveness(component) if stated else liveness)
         exploration = explore(flow)
         if not exploration.complete:
             diagnostic = Diagnostic.at(
@@ -99,3 +108,21 @@ def _model_check(a: object, result: Verification) -> None:
             result.diagnostics.append(diagnostic)
             if refutation.counterexample is not None:
                 result.counterexamples.append((diagnostic, refutation.counterexample))
+        if stated:
+            _properties(component, Properties(flow, exploration), result)
+
+
+def _properties(component: object, properties: Properties, result: Verification) -> None:
+    """The properties the chart states that its runs do not prove; each is judged where its
+    chart is the root (a skill's with its parameters at their defaults)."""
+    for verdict in properties.verdicts():
+        diagnostic = Diagnostic.at(
+            verdict.property.position,
+            verdict.code,
+            SEVERITY[verdict.code],
+            verdict.message,
+            verdict.hint,
+        )
+        result.diagnostics.append(diagnostic)
+        if verdict.counterexample is not None:
+            result.counterexamples.append((diagnostic, verdict.counterexample))
