@@ -90,7 +90,8 @@ class Converter:
         if not node.operator:
             return operand
         if node.operator == "-" and isinstance(operand, ast.Quantity):
-            return ast.Quantity(-operand.value, operand.unit, "-" + operand.text, operand.position)
+            where = self.position(node)  # at the sign: the negative literal begins there
+            return ast.Quantity(-operand.value, operand.unit, "-" + operand.text, where)
         return ast.Unary(node.operator, operand, self.position(node))
 
     def rule_PostfixExpression(self, node: Any) -> ast.Expression:

@@ -3,8 +3,8 @@
 Every AST dataclass becomes an EClass; plain fields become EAttributes, fields holding nodes
 become containment EReferences. A union of node types used by the AST (``Expression``,
 ``Statement``, ``Element``, ``Declaration``) becomes an abstract EClass that its members
-extend; any other union is typed by the abstract root ``Node``. Source positions are left
-out: they are not part of a model's meaning.
+extend; any other union is typed by the abstract root ``Node``. Source positions (every
+field typed ``Position``) are left out: they are not part of a model's meaning.
 """
 
 from __future__ import annotations
@@ -30,8 +30,7 @@ NAMED_UNIONS = {
     "Declaration": ast.Declaration,
 }
 PLAIN = {str: ecore.EString, int: ecore.EInt, float: ecore.EDouble, bool: ecore.EBoolean}
-SKIPPED = {"position", "source_position", "target_position", "stimulus_position"}
-SKIPPED |= {"package_position", "file"}
+SKIPPED = {"file"}
 
 
 def _node_classes() -> list[type]:
@@ -62,7 +61,7 @@ def metamodel() -> ecore.EPackage:
     for cls, eclass in classes.items():
         hints = typing.get_type_hints(cls, vars(ast))
         for field in dataclasses.fields(cls):
-            if field.name not in SKIPPED:
+            if field.name not in SKIPPED and hints[field.name] is not ast.Position:
                 eclass.eStructuralFeatures.append(
                     _feature(field.name, hints[field.name], classes, unions, root)
                 )

@@ -9,9 +9,15 @@ from collections.abc import Iterator
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.behaviour.conditions import Conditions
 from lightrocks.languages.lightrocks.behaviour.conditions import Finding as Judged
+from lightrocks.languages.lightrocks.behaviour.intervals import (
+    Durations,
+    nested_budgets,
+    zero_budget,
+)
 from lightrocks.languages.lightrocks.behaviour.judge import SOLVER_TURN
 from lightrocks.languages.lightrocks.behaviour.parameters import ParameterValues
 from lightrocks.languages.lightrocks.behaviour.plausibility import Plausibility, degree_findings
+from lightrocks.metamodel import ast
 from lightrocks.workbench.check import CheckContext
 from lightrocks.workbench.cocos import Code
 from lightrocks.workbench.diagnostics import Severity
@@ -35,6 +41,9 @@ class BehaviourPass(Pass):
         Code("LR0608", W, "stiffness and damping are of the device's typical magnitude"),
         Code("LR0609", W, "degrees are not written as multiples of π"),
         Code("LR0610", W, "a force end condition can hold against the commanded motion"),
+        Code("LR0611", W, "a duration is positive"),
+        Code("LR0612", W, "a wait or a child's budget is shorter than the budget enclosing it"),
+        Code("LR0613", W, "an action's end condition is not implied by its start condition"),
     )
 
     def __init__(self, context: CheckContext) -> None:
@@ -51,7 +60,15 @@ class BehaviourPass(Pass):
         for component in a.models.components:
             for region in component.region.regions():
                 if region.loaded is component.loaded:
-                    yield from Conditions(a.typing, values, component, region).findings()
+                    conditions = Conditions(a.typing, values, component, region)
+                    yield from conditions.findings()
+                    yield from conditions.implied_by_start()
+                    yield from Durations(conditions).findings()
+                    yield from nested_budgets(conditions)
+            own = ast.stereotype(component.statechart.stereotypes, "timeout")
+            spent = zero_budget(own, component.time_budget) if own is not None else None
+            if spent is not None:
+                yield spent
             if component.layer == "action":
                 yield from Plausibility(a.typing, component).findings()
         for file, expressions in a.typing.inferred.items():

@@ -286,3 +286,102 @@ BEHAVIOUR_CASES: list[Case] = [
         hint="compare with a tolerance",
     ),
 ]
+
+WAITING = _pick("  Reach -> picked done;\n  Reach -> failed after(2 s);\n")
+TIMED_JOB = replace(
+    JOB,
+    "  PickPart -> failed failed;\n",
+    "  PickPart -> failed failed;\n  PickPart -> failed timeout;\n",
+)
+
+
+def _budget(pick: str, timeout: str) -> dict[str, str]:
+    """``pick`` with a skill budget, in a job that handles its timeout."""
+    return {
+        "skills/Pick.lr": replace(pick, "<<skill>>", f"<<skill, {timeout}>>"),
+        "tasks/Job.lr": TIMED_JOB,
+    }
+
+
+STARTED = replace(
+    MOVE,
+    "  end condition done",
+    "  start condition ready [arm.force < 10 N];\n  end condition done",
+)
+BOUNDED = _pick("  Reach -> picked done;\n  Reach -> failed timeout;\n")
+
+DURATION_CASES: list[Case] = [
+    Case(
+        "LR0611",
+        ok={"skills/Pick.lr": WAITING},
+        bad={"skills/Pick.lr": replace(WAITING, "after(2 s)", "after(@@-2 s)")},
+        message="after(-2 s) waits -2 s: a duration is never positive here",
+        hint="wait a positive duration",
+    ),
+    Case(
+        "LR0611",
+        ok=_budget(WAITING, 'timeout="3 s"'),
+        bad=_budget(WAITING, '@@timeout="0 s"'),
+        message="timeout '0 s' is no time",
+        variant="budget",
+    ),
+    Case(
+        "LR0612",
+        ok=_budget(WAITING, 'timeout="3 s"'),
+        bad=_budget(replace(WAITING, "after(2 s)", "after(@@5 s)"), 'timeout="3 s"'),
+        message="after(5 s) waits 5 s, not less than the budget 3 s",
+        hint="raise the <<timeout>>",
+    ),
+    Case(
+        "LR0612",
+        ok={"actions/Move.lr": BUDGETED, **_budget(BOUNDED, 'timeout="9 s"')},
+        bad={
+            "actions/Move.lr": BUDGETED,
+            **_budget(
+                replace(BOUNDED, '<<import="Move">>', '<<@@import="Move">>'), 'timeout="2 s"'
+            ),
+        },
+        message="'actions.Move' has the budget 5 s, longer than the enclosing budget 2 s",
+        variant="child",
+    ),
+    Case(
+        "LR0613",
+        ok={"actions/Move.lr": STARTED},
+        bad={
+            "actions/Move.lr": replace(
+                replace(STARTED, "[arm.force > 20 N]", "[@@arm.force > 20 N]"),
+                "[arm.force < 10 N]",
+                "[arm.force > 30 N]",
+            )
+        },
+        message="end condition 'blocked' holds whenever the start condition 'ready' does",
+        hint="end on what the command changes",
+    ),
+]
+
+PROVED = replace(
+    PICK, "  go -> Reach;\n", "  property held: picked ensures [arm.done];\n  go -> Reach;\n"
+)
+
+PROPERTY_CASES: list[Case] = [
+    Case(
+        "LR0717",
+        ok={"skills/Pick.lr": PROVED},
+        bad={"skills/Pick.lr": replace(PROVED, "held: picked", "held: @@pickd")},
+        message="'pickd' is no outcome of 'Pick'",
+        hint="picked",
+    ),
+    Case(
+        "LR0718",
+        ok={"skills/Pick.lr": PROVED},
+        bad={
+            "actions/Move.lr": replace(
+                MOVE,
+                "  end condition done",
+                "  @@property quick: done ensures [arm.done];\n  end condition done",
+            )
+        },
+        message="property 'quick' of the action 'Move'",
+        hint="state it in a skill",
+    ),
+]

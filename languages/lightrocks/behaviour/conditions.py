@@ -202,7 +202,7 @@ class Conditions:
                     continue
                 seen.add(id(other))
                 both = z3.And(self._term(other), self._term(transition))
-                model = self.judge.possible(both, *self._parameter_values(both))
+                model = self.judge.possible(both, *self.parameter_values(both))
                 if isinstance(model, bool):
                     continue
                 stimulus = f" on '{key}'" if key and not key.startswith("after@") else ""
@@ -215,7 +215,7 @@ class Conditions:
                     "make the guards exclude each other",
                 )
 
-    def _parameter_values(self, formula: z3.BoolRef) -> list[z3.BoolRef]:
+    def parameter_values(self, formula: z3.BoolRef) -> list[z3.BoolRef]:
         """The values the models give the component's parameters read by ``formula``."""
         facts = []
         own = self.component.region.parameters
@@ -280,7 +280,7 @@ class Conditions:
             )
             return
         start = self._start_values(term)
-        if start and self.judge.always(term, *start, *self._parameter_values(term)):
+        if start and self.judge.always(term, *start, *self.parameter_values(term)):
             yield Finding(
                 "LR0603",
                 start_of(condition.expression),
@@ -288,6 +288,33 @@ class Conditions:
                 f"({_start_text(self, term)}): the command ends at once",
                 "compare with the value the sensor reaches, mind the sign",
             )
+
+    def implied_by_start(self) -> Iterator[Finding]:
+        """End conditions of an action that its start conditions imply (LR0613): whenever
+        the command may start, it ends at once."""
+        starts = [c.expression for c in self.region.start_conditions if c.expression]
+        if not starts or self.component.layer != "action" or self.region.parent is not None:
+            return
+        given = [self.guard_term(e) for e in starts]
+        if self.judge.never(*given):
+            return  # start conditions that never hold: LR0601
+        for condition in self.region.end_conditions:
+            expression = condition.expression
+            if expression is None or condition.position.file != self._file:
+                continue
+            term = self.guard_term(expression)
+            if self.judge.always(term) or self.judge.never(term):
+                continue  # LR0601, LR0602
+            facts = self.parameter_values(z3.And(term, *given))
+            if self.judge.always(term, *given, *facts):
+                names = ", ".join(f"'{c.name}'" for c in self.region.start_conditions)
+                yield Finding(
+                    "LR0613",
+                    start_of(expression),
+                    f"end condition '{condition.name}' holds whenever the start condition "
+                    f"{names} does: the command ends as soon as it starts",
+                    "end on what the command changes, not on what must hold before it",
+                )
 
     def _start_values(self, term: z3.BoolRef) -> list[z3.BoolRef]:
         """What the commanded device's sensors read when its command starts."""
