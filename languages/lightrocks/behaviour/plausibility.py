@@ -15,7 +15,7 @@ is a warning with its reason and a fix:
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import fields, is_dataclass, replace
 
 from lightrocks.languages.domain.types import DeviceT
@@ -44,7 +44,7 @@ class Plausibility:
         self.defaults = {n: p.default for n, p in self.region.parameters.items() if p.default}
 
     def findings(self) -> Iterator[Finding]:
-        call = self._call()
+        call = self.call()
         if call is None:
             return
         device, command, arguments = call
@@ -54,7 +54,7 @@ class Plausibility:
 
     # -- the command ----------------------------------------------------------------------
 
-    def _call(self) -> tuple[str, ast.Command, dict[str, ast.Expression]] | None:
+    def call(self) -> tuple[str, ast.Command, dict[str, ast.Expression]] | None:
         for action in self.region.actions:
             for statement in action.statements if action.kind == "do" else ():
                 call = statement.value if isinstance(statement, ast.Assignment) else None
@@ -78,7 +78,7 @@ class Plausibility:
                 return function.target.name, command, arguments
         return None
 
-    def _value(self, expression: ast.Expression | None) -> object:
+    def value(self, expression: ast.Expression | None) -> object:
         """A constant with the action's parameters at their defaults, else None."""
         return fold(_substitute(expression, self.defaults, 4)) if expression is not None else None
 
@@ -89,7 +89,7 @@ class Plausibility:
     ) -> Iterator[Finding]:
         declared = Scope(self.typing, self.region).env.get(device)
         written = self.component.command_budget(declared.device)
-        goal = _goal(command, arguments)
+        goal = goal_argument(command, arguments)
         if written.stereotype is None or goal is None:
             return  # LR0607 judges a written budget, not the default
         budget = written.seconds
@@ -98,8 +98,8 @@ class Plausibility:
         if motion is None:
             return
         translation, rotation = motion
-        distance = _norm([self._value(part) for part in translation])
-        angle = sum(abs(v) for v in (self._value(r) for r in rotation) if _number(v))
+        distance = _norm([self.value(part) for part in translation])
+        angle = sum(abs(v) for v in (self.value(r) for r in rotation) if is_number(v))
         needed = []
         speed = self._speed(command, arguments, LENGTH / TIME)
         if distance and speed:
@@ -127,8 +127,8 @@ class Plausibility:
             if unit is None or lookup(unit).dimension != dimension:
                 continue
             for value in (arguments.get(parameter.name), parameter.default, parameter.high):
-                number = self._value(value)
-                if _number(number) and number > 0:
+                number = self.value(value)
+                if is_number(number) and number > 0:
                     return float(number)
         return None
 
@@ -142,14 +142,14 @@ class Plausibility:
                 continue
             written = arguments.get(parameter.name)
             typical = fold(parameter.default)
-            value = self._value(written)
+            value = self.value(written)
             if written is None or typical is None or value is None:
                 continue
-            where = self._origin(written)
+            where = self.origin(written)
             typicals = typical if isinstance(typical, tuple) else (typical,)
             values = value if isinstance(value, tuple) else (value,)
             for index, (number, usual) in enumerate(zip(values, typicals, strict=False)):
-                if not (_number(number) and _number(usual)) or number == 0 or usual == 0:
+                if not (is_number(number) and is_number(usual)) or number == 0 or usual == 0:
                     continue
                 ratio = abs(number / usual)
                 if ratio >= TYPICAL_RATIO or ratio <= 1 / TYPICAL_RATIO:
@@ -164,7 +164,7 @@ class Plausibility:
                     )
                     break
 
-    def _origin(self, written: ast.Expression) -> ast.Position:
+    def origin(self, written: ast.Expression) -> ast.Position:
         """Where a value is written: the parameter's default when passed on unchanged."""
         if isinstance(written, ast.Name) and written.name in self.defaults:
             return start_of(self.defaults[written.name])
@@ -175,54 +175,75 @@ class Plausibility:
     def _force_signs(
         self, device: str, command: ast.Command, arguments: dict[str, ast.Expression]
     ) -> Iterator[Finding]:
-        goal = _goal(command, arguments)
+        goal = goal_argument(command, arguments)
         motion = _relative_motion(goal, device) if goal is not None else None
         if motion is None or motion[1]:
             return
-        direction = [self._value(part) for part in motion[0]]
-        if not all(_number(v) for v in direction) or sum(1 for v in direction if v) != 1:
+        direction = [self.value(part) for part in motion[0]]
+        if not all(is_number(v) for v in direction) or sum(1 for v in direction if v) != 1:
             return
         axis = next(i for i, v in enumerate(direction) if v)
         moving = 1 if direction[axis] > 0 else -1
+        for condition, path, kind in self.against(device, axis, moving, self.defaults_of):
+            if kind != "force":
+                continue  # a displacement against the motion is LR0631's (behaviour.physics)
+            way = f"{'+' if moving > 0 else '-'}{AXES[axis]}"
+            yield Finding(
+                "LR0610",
+                start_of(condition.expression),
+                f"end condition '{condition.name}' needs {path} "
+                f"{'>' if moving > 0 else '<'} 0 while the arm moves {way}: a contact "
+                "pushes back against the motion, so it cannot hold on the way",
+                "mind the sign of the threshold",
+            )
+
+    def against(
+        self,
+        device: str,
+        axis: int,
+        moving: int,
+        given: Callable[[Terms], list],
+    ) -> Iterator[tuple[ast.Condition, str, str]]:
+        """The end conditions (written in the action's file) that cannot hold while the arm
+        moves along world axis ``axis`` in the sign ``moving``, with the sensor path each
+        needs and its kind: a ``force`` of the sign a contact cannot have (it pushes back
+        against the motion), a ``travel`` (a length that is 0 when the command starts)
+        against the motion. ``given`` says what is known of the parameters read."""
         terms = Terms(Scope(self.typing, self.region))
         judge = Judge(terms)
         for condition in self.region.end_conditions:
-            if condition.expression is None or condition.position.file != _file(self.component):
+            if condition.expression is None or condition.position.file != file_of(self.component):
                 continue
             term = terms.condition(condition.expression)
-            forces = [
-                (path, constant)
-                for path, (variable, constant) in terms.read.items()
-                if variable.kind == "sensor"
-                and path.startswith(f"{device}.")
-                and path.endswith(f".{AXES[axis]}")
-                and _dimension(variable.unit) == FORCE
-            ]
-            defaults = self._defaults_of(terms)
-            for path, force in forces:
-                pushed_back = force * (-moving) >= 0
-                if judge.never(term, pushed_back, *defaults) and not judge.never(term, *defaults):
-                    way = f"{'+' if moving > 0 else '-'}{AXES[axis]}"
-                    yield Finding(
-                        "LR0610",
-                        start_of(condition.expression),
-                        f"end condition '{condition.name}' needs {path} "
-                        f"{'>' if moving > 0 else '<'} 0 while the arm moves {way}: a contact "
-                        "pushes back against the motion, so it cannot hold on the way",
-                        "mind the sign of the threshold",
-                    )
+            readings = []
+            for path, (variable, constant) in terms.read.items():
+                if variable.kind != "sensor" or not path.startswith(f"{device}."):
+                    continue
+                if not path.endswith(f".{AXES[axis]}"):
+                    continue
+                dimension = dimension_of(variable.unit)
+                if dimension == FORCE:
+                    readings.append((path, "force", constant * (-moving) >= 0))
+                elif dimension == LENGTH and variable.start == 0:
+                    readings.append((path, "travel", constant * moving >= 0))
+            facts = given(terms)
+            for path, kind, on_the_way in readings:
+                if judge.never(term, on_the_way, *facts) and not judge.never(term, *facts):
+                    yield condition, path, kind
 
-    def _defaults_of(self, terms: Terms) -> list:
+    def defaults_of(self, terms: Terms) -> list:
         """The action's parameters read so far, each at its constant default."""
         facts = []
         for path, (variable, constant) in terms.read.items():
-            value = self._value(self.defaults.get(path)) if variable.kind == "parameter" else None
-            if _number(value):
+            value = self.value(self.defaults.get(path)) if variable.kind == "parameter" else None
+            if is_number(value):
                 facts.append(constant == exact(float(value)))
         return facts
 
 
-def _goal(command: ast.Command, arguments: dict[str, ast.Expression]) -> ast.Expression | None:
+def goal_argument(
+    command: ast.Command, arguments: dict[str, ast.Expression]
+) -> ast.Expression | None:
     frames = [p.name for p in command.parameters if p.type == "Frame"]
     return arguments.get(frames[0]) if frames else None
 
@@ -232,8 +253,8 @@ def _relative_motion(
 ) -> tuple[list[ast.Expression], list[ast.Expression]] | None:
     """The translation (world axes) and rotations of a goal written relative to where the
     device is: ``transl(x, y, z) * device.sensor`` or ``device.sensor * rotZ(a) * …``."""
-    factors = _factors(goal)
-    anchors = [i for i, f in enumerate(factors) if _reads_device(f, device)]
+    factors = product_factors(goal)
+    anchors = [i for i, f in enumerate(factors) if reads_device(f, device)]
     if len(anchors) != 1:
         return None
     before, after = factors[: anchors[0]], factors[anchors[0] + 1 :]
@@ -255,9 +276,9 @@ def _relative_motion(
     return translation, rotation
 
 
-def _factors(expression: ast.Expression) -> list[ast.Expression]:
+def product_factors(expression: ast.Expression) -> list[ast.Expression]:
     if isinstance(expression, ast.Binary) and expression.operator == "*":
-        return _factors(expression.left) + _factors(expression.right)
+        return product_factors(expression.left) + product_factors(expression.right)
     return [expression]
 
 
@@ -267,7 +288,7 @@ def _call(expression: ast.Expression) -> str:
     return ""
 
 
-def _reads_device(expression: ast.Expression, device: str) -> bool:
+def reads_device(expression: ast.Expression, device: str) -> bool:
     return (
         isinstance(expression, ast.Member)
         and isinstance(expression.target, ast.Name)
@@ -291,12 +312,12 @@ def _substitute(expression: object, values: dict[str, ast.Expression], depth: in
     return expression
 
 
-def _number(value: object) -> bool:
+def is_number(value: object) -> bool:
     return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def _norm(parts: list[object]) -> float | None:
-    if not parts or not all(_number(p) for p in parts):
+    if not parts or not all(is_number(p) for p in parts):
         return None
     return math.sqrt(sum(float(p) ** 2 for p in parts))
 
@@ -312,14 +333,14 @@ def _unit(expression: ast.Expression | None) -> str | None:
     return None
 
 
-def _dimension(unit: str) -> object:
+def dimension_of(unit: str) -> object:
     try:
         return lookup(unit).dimension if unit else None
     except UnitError:
         return None
 
 
-def _file(component: Component) -> str:
+def file_of(component: Component) -> str:
     return component.loaded.unit.package_position.file
 
 
