@@ -15,6 +15,7 @@ from __future__ import annotations
 from lightrocks.languages.lightrocks import (
     cocos_behaviour,
     cocos_components,
+    cocos_dataflow,
     cocos_flow,
     cocos_names,
     cocos_orthogonal,
@@ -34,6 +35,7 @@ AREAS = (
     cocos_orthogonal,
     cocos_safety,
     cocos_behaviour,
+    cocos_dataflow,
     cocos_silent,
     cocos_properties,
 )

@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 
-from lightrocks.languages.lightrocks.access import Accesses, assigned
+from lightrocks.languages.lightrocks.access import Accesses, assigned, names_of
 from lightrocks.metamodel import ast
 from lightrocks.metamodel.units import seconds
 from lightrocks.runtime import DEFAULT_BUDGET
@@ -179,6 +179,21 @@ class Region:
         return found
 
 
+@dataclass(frozen=True)
+class Touch:
+    """A variable an element of a region writes, or one its guards, conditions and invariants
+    test, named as the region's statechart names it."""
+
+    path: str
+    writes: bool
+    node: object
+    """The statement that writes it or the expression that tests it, as written."""
+    at: ast.Position
+    """Where in the region: the node's position, or the state importing the child it is in."""
+    child: str = ""
+    """The importing state of the region the node is in ("" for the region's own)."""
+
+
 @dataclass
 class Component:
     """One statechart with its extension resolved."""
@@ -208,6 +223,41 @@ class Component:
         """The parameters (a plain statechart's variables) some assignment of the chart
         writes: they are not constant."""
         return assigned(self.statechart)
+
+    def touches(self, region: Region) -> tuple[Touch, ...]:
+        """What ``region`` of this statechart, the states inside it and the statecharts they
+        import write, and what their guards, conditions and invariants test: a child's
+        ``Object`` parameters become the names bound to them; its other parameters are its
+        own copies (and an ``Object`` parameter bound to no name is no object known here),
+        so what it does with them touches nothing of this statechart."""
+        found = self._touches.get(id(region))
+        if found is None:
+            found = self._touches[id(region)] = tuple(self._touching(region))
+        return found
+
+    @cached_property
+    def _touches(self) -> dict[int, tuple[Touch, ...]]:
+        return {}
+
+    def _touching(self, region: Region) -> list[Touch]:
+        found: list[Touch] = []
+        for inner in region.regions():
+            for node, writes in _touching_nodes(inner):
+                done = self.access(node)
+                paths = done.writes if writes else done.reads
+                found += [Touch(p, writes, node, node.position) for p in sorted(paths)]
+            for info in inner.states.values():
+                child = info.imported
+                if child is None:
+                    continue
+                bound = _bound_objects(child, info.state)
+                for touch in child.touches(child.region):
+                    path = _renamed(touch.path, child.region.parameters, bound)
+                    if path is not None:
+                        found.append(
+                            Touch(path, touch.writes, touch.node, info.state.position, info.name)
+                        )
+        return found
 
     @cached_property
     def layers(self) -> list[ast.Stereotype]:
@@ -419,6 +469,41 @@ class ModelSet:
                 owner,
             )
         return info
+
+
+def _touching_nodes(region: Region) -> list[tuple[object, bool]]:
+    """The region's own statements (True: they write) and tests (False: they read)."""
+    found: list[tuple[object, bool]] = []
+    for transition in [*region.transitions, *region.internal]:
+        found += [(transition.guard, False)] if transition.guard is not None else []
+        found += [(s, True) for s in transition.action or ()]
+    found += [(c.expression, False) for c in region.conditions.values() if c.expression]
+    found += [(i.expression, False) for i in region.invariants]
+    found += [(i.state.invariant, False) for i in region.states.values() if i.state.invariant]
+    found += [(s, True) for a in region.actions for s in a.statements]
+    return found
+
+
+def _bound_objects(child: Component, state: ast.State) -> dict[str, str]:
+    """The child's parameters bound to a name or attribute path by the importing state."""
+    names = list(child.region.parameters)
+    bound: dict[str, str] = {}
+    for index, argument in enumerate(state.arguments):
+        key = argument.name or (names[index] if index < len(names) else "")
+        chain = names_of(argument.value)
+        if chain is not None:
+            bound[key] = ".".join(chain)
+    return bound
+
+
+def _renamed(path: str, parameters: dict[str, ast.Parameter], bound: dict[str, str]) -> str | None:
+    """A child's path in the importing statechart's names; None for one of its own."""
+    head, dot, rest = path.partition(".")
+    if head not in parameters:
+        return path
+    if parameters[head].type != "Object" or head not in bound:
+        return None
+    return bound[head] + dot + rest
 
 
 def _flatten(elements: tuple) -> list:

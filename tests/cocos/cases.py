@@ -10,6 +10,7 @@ ids are collected and run in a stable order.
 from __future__ import annotations
 
 from cocos.cases_behaviour import BEHAVIOUR_CASES, DURATION_CASES, PROPERTY_CASES
+from cocos.cases_dataflow import DATAFLOW_CASES
 from cocos.cases_names import NAME_CASES, NAME_VARIANTS
 from cocos.cases_orthogonal import ORTHOGONAL_CASES
 from cocos.cases_safety import SAFETY_CASES
@@ -28,6 +29,7 @@ CASES: list[Case] = [
     *SAFETY_CASES,
     *BEHAVIOUR_CASES,
     *DURATION_CASES,
+    *DATAFLOW_CASES,
     *PROPERTY_CASES,
     *UMLP_CASES,
 ]
