@@ -141,11 +141,17 @@ def _via(touch: Touch, file: str, always: bool = False) -> str:
 
 @dataclass(frozen=True)
 class Fact:
-    """Something known where a transition is taken, and how the message names it."""
+    """Something known where a transition is taken (a condition that held, or did not), and
+    how the message names it."""
 
-    term: z3.BoolRef
+    expression: ast.Expression
+    held: bool
     reason: str
     rank: int = 0  # the order reasons are named in: what held, what did not, what failed
+
+    @property
+    def reads(self) -> frozenset[str]:
+        return access(self.expression).reads
 
 
 class Context:
@@ -176,28 +182,29 @@ class Context:
         info = self.region.states.get(source)
         if start is None and (info is None or info.imported is None):
             return None  # nothing known but earlier guards: LR0604's
-        judge, guard = self.conditions.judge, self.conditions.guard_term(transition.guard)
-        if judge.never(guard):
-            return None  # LR0601
-        reasons: list[str] = []
-        shadowed = True
+        contexts = []
         for key in self._keys(source, transition):
             earlier = [
                 t for t in leaving[: leaving.index(transition)] if key in self._keys(source, t)
             ]
             if any(t.guard is None for t in earlier):
                 return None  # an unguarded transition takes the stimulus first: LR0211, LR0604
-            failed = [
-                Fact(z3.Not(self.conditions.guard_term(t.guard)), self._at(t), 2) for t in earlier
-            ]
-            if not failed or not judge.never(guard, *(f.term for f in failed)):
+            failed = [Fact(t.guard, False, self._at(t), 2) for t in earlier]
+            known = _connected(transition.guard, self._known(start, info, key) + failed)
+            if not any(f.rank < 2 for f in known):
+                return None  # only earlier guards bear on it: LR0604's
+            contexts.append((known, failed))
+        judge, guard = self.conditions.judge, self.conditions.guard_term(transition.guard)
+        if judge.never(guard):
+            return None  # LR0601
+        reasons: list[str] = []
+        shadowed = True
+        for known, failed in contexts:
+            if not failed or not judge.never(guard, *self._terms(failed)):
                 shadowed = False
-            facts = self._known(start, info, key)
-            if not facts and failed and judge.never(guard, *(f.term for f in failed)):
-                continue  # on this stimulus the earlier transitions take every case
-            if not facts or judge.never(*(f.term for f in facts + failed)):
-                return None  # nothing known, or a context that never arises
-            needed = self._needed(guard, facts + failed)
+            if judge.never(*self._terms(known)):
+                return None  # a context that never arises
+            needed = self._needed(guard, known)
             if needed is None:
                 return None
             reasons += [r for r in needed if r not in reasons]
@@ -225,12 +232,12 @@ class Context:
         """The reasons of the facts the guard contradicts, fewest first found; None when it
         contradicts none of them."""
         judge = self.conditions.judge
-        if not judge.never(guard, *(f.term for f in facts)):
+        if not judge.never(guard, *self._terms(facts)):
             return None
         kept = list(facts)
         for fact in facts:
             rest = [f for f in kept if f is not fact]
-            if judge.never(guard, *(f.term for f in rest)):
+            if judge.never(guard, *self._terms(rest)):
                 kept = rest
         kept.sort(key=lambda f: f.rank)
         found = [f.reason for f in kept if f.rank < 2]
@@ -246,9 +253,8 @@ class Context:
         if start is not None:
             if start.kind != "start" or start.expression is None:
                 return []
-            term = self.conditions.guard_term(start.expression)
             shown = f"[{text(start.expression)}]"
-            return [Fact(term, f"start condition '{start.name}' {shown} holds")]
+            return [Fact(start.expression, True, f"start condition '{start.name}' {shown} holds")]
         return self._outcome(info, key) if info is not None else []
 
     def _outcome(self, info: StateInfo, key: str) -> list[Fact]:
@@ -269,18 +275,16 @@ class Context:
                 rewritten = self._in_parent(condition.expression, child, info)
                 if rewritten is not None:
                     self._kept.append(rewritten)
-                    term = self.conditions.guard_term(rewritten)
                     shown = f"[{text(condition.expression)}]"
                     if held:
-                        facts.append(
-                            Fact(term, f"'{info.name}' ended with '{key}', so {shown} held")
-                        )
+                        reason = f"'{info.name}' ended with '{key}', so {shown} held"
+                        facts.append(Fact(rewritten, True, reason))
                     else:
                         reason = (
                             f"'{info.name}' did not end with '{condition.name}' before, so "
                             f"{shown} did not hold"
                         )
-                        facts.append(Fact(z3.Not(term), reason, 1))
+                        facts.append(Fact(rewritten, False, reason, 1))
             if held:
                 return facts
         return facts
@@ -334,6 +338,10 @@ class Context:
         found = rewrite(expression)
         return None if _missing(found) else found
 
+    def _terms(self, facts: list[Fact]) -> list[z3.BoolRef]:
+        terms = [self.conditions.guard_term(f.expression) for f in facts]
+        return [t if f.held else z3.Not(t) for f, t in zip(facts, terms, strict=True)]
+
     def _at(self, transition: ast.Transition) -> str:
         position = transition.position
         if position.file == self._file:
@@ -342,6 +350,23 @@ class Context:
 
 
 _MISSING = object()
+
+
+def _connected(guard: ast.Expression, facts: list[Fact]) -> list[Fact]:
+    """The facts that share a variable with the guard, directly or through one another: the
+    others cannot make it fail (they only constrain variables it does not read)."""
+    reached = set(access(guard).reads)
+    pending = [(f, f.reads) for f in facts]
+    found: set[int] = set()
+    grew = True
+    while grew:
+        grew = False
+        for fact, reads in pending:
+            if id(fact) not in found and any(_overlap(r, s) for r in reads for s in reached):
+                found.add(id(fact))
+                reached |= reads
+                grew = True
+    return [f for f in facts if id(f) in found]
 
 
 def _missing(value: object) -> bool:
