@@ -86,16 +86,16 @@ def races(component: Component, region: Region) -> Iterator[Finding]:
 def _prefer(
     one: tuple[str, Touch],
     other: tuple[str, Touch],
-    mine: tuple[Touch, ...],
-    theirs: tuple[Touch, ...],
+    later: tuple[Touch, ...],
+    earlier: tuple[Touch, ...],
 ) -> bool:
-    """Whether the race is reported at ``one`` (an earlier region's write) rather than at
-    ``other`` (the later region's)."""
+    """Whether the race is reported at ``one`` (the earlier region's write, among the
+    touches ``earlier``) rather than at ``other`` (the later region's, among ``later``)."""
     if one[1].child != other[1].child and "" in (one[1].child, other[1].child):
         return not one[1].child
     uses = [
         sum(_overlap(t.path, w.path) for t in touches)
-        for w, touches in ((one[1], theirs), (other[1], mine))
+        for w, touches in ((one[1], earlier), (other[1], later))
     ]
     return uses[0] < uses[1]
 
