@@ -31,10 +31,32 @@ def _configure_verify(sub: argparse._SubParsersAction) -> None:
         "--strict", action="store_true", help="warnings fail the verification too (exit 1)"
     )
     parser.add_argument(
+        "--max-configurations",
+        type=_positive,
+        default=None,
+        metavar="N",
+        help="explore at most N configurations of each statechart (default 200,000)",
+    )
+    parser.add_argument(
         "--counterexamples",
         metavar="DIR",
         help="write each refuted property's run as a dry-run script (--script) into DIR",
     )
+
+
+def _script_name(taken: dict[str, str], stem: str) -> str:
+    """``stem.dryrun.json``, numbered from 2 where two findings share chart, code and line."""
+    name, number = f"{stem}.dryrun.json", 1
+    while name in taken:
+        number += 1
+        name = f"{stem}-{number}.dryrun.json"
+    return name
+
+
+def _positive(text: str) -> int:
+    if not text.isdigit() or int(text) == 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a positive whole number")
+    return int(text)
 
 
 @command(_configure_verify)
@@ -48,13 +70,14 @@ def cmd_verify(args: argparse.Namespace) -> int:
     if folder is not None and folder.exists() and not folder.is_dir():
         raise UsageError(f"--counterexamples {folder} is not a folder")
     keep_parses_on_disk()
-    result = verify(paths, model_path, strict=args.strict)
+    limit = {"max_configurations": args.max_configurations} if args.max_configurations else {}
+    result = verify(paths, model_path, strict=args.strict, **limit)
     output = report.render(args.format, result.diagnostics, all_cocos)
     if output:
         print(output)
     scripts: dict[str, str] = {}
-    for number, (finding, counterexample) in enumerate(result.counterexamples, start=1):
-        name = f"{counterexample.chart}.{finding.code}.{number}.dryrun.json"
+    for finding, counterexample in result.counterexamples:
+        name = _script_name(scripts, f"{counterexample.chart}-{finding.code}-{finding.line}")
         scripts[name] = script_text(counterexample)
         if args.format == "text":
             print(

@@ -42,6 +42,7 @@ def test_a_refuted_property_shows_its_run_and_writes_it_as_a_script(
     assert f"{task}:47:3: warning LR0703" in out
     assert "then, again and again:" in out
     [script] = scripts.glob("*.dryrun.json")
+    assert script.name == "screwing.tasks.ScrewTask-LR0703-47.dryrun.json"  # as docs say
     assert json.loads(script.read_text())["outcomes"]
     run = ["run", str(task), "--path", str(endless), "--adapter", "dryrun", "--script", str(script)]
     assert main(run) in (0, 1)  # the script is one that run accepts: no usage error
@@ -68,3 +69,15 @@ def test_a_file_as_the_counterexample_folder_is_a_usage_error(
     assert main(["verify", str(EXAMPLES), "--counterexamples", str(taken)]) == 2
     err = capsys.readouterr().err
     assert "not a folder" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("limit", ["0", "-5", "many"])
+def test_a_limit_that_is_no_positive_number_is_a_usage_error(
+    limit: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as stopped:
+        main(["verify", str(EXAMPLES), "--max-configurations", limit])
+    assert stopped.value.code == 2
+    err = capsys.readouterr().err
+    assert "is not a positive whole number" in err
+    assert "Traceback" not in err

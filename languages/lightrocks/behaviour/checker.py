@@ -7,7 +7,9 @@ read them, or forgotten). On that graph:
 - LR0701: a run can end with the success outcome (the first end condition);
 - LR0702: no reachable configuration is a trap, from which no declared end is reachable;
 - LR0703: every cycle is broken by a value that changes on it (a counter moving toward its
-  bound leaves the cycle in the graph's past), else it is a possible endless retry.
+  bound leaves the cycle in the graph's past; one past the window of exact values must move
+  one way on every round and pass a bound on that side), else it is a possible endless
+  retry, reported at the transition whose guard reads a value nothing on the loop moves.
 
 Every refutation carries the path that shows it, shortest first.
 """
@@ -20,10 +22,16 @@ from itertools import pairwise
 
 import networkx as nx
 
+from lightrocks.languages.lightrocks.access import access
 from lightrocks.languages.lightrocks.behaviour.flow import Flow, Step
+from lightrocks.languages.lightrocks.behaviour.store import BOUNDED, MOVED
 from lightrocks.metamodel import ast
 
 MAX_CONFIGURATIONS = 200_000
+RAISE_LIMIT = (
+    "raise the limit with lightrocks verify --max-configurations N, or bound what its "
+    "guards count with a declared range or a guard on the loop"
+)
 START = ("START",)
 
 
@@ -52,14 +60,15 @@ class Exploration:
     graph: nx.DiGraph
     configurations: list[tuple]
     complete: bool
+    limit: int = MAX_CONFIGURATIONS  # the configurations it was allowed
 
     def tree(self, node: object) -> tuple:
         return ("START",) if node == START else self.configurations[node][0]
 
 
-def explore(flow: Flow) -> Exploration:
-    """Every configuration reachable from the start, breadth first; a configuration is a
-    graph node by its number (hashing the nested configuration once)."""
+def explore(flow: Flow, limit: int = MAX_CONFIGURATIONS) -> Exploration:
+    """Every configuration reachable from the start, breadth first, up to ``limit`` of them;
+    a configuration is a graph node by its number (hashing the nested configuration once)."""
     graph = nx.DiGraph()
     graph.add_node(START)
     numbers: dict[tuple, int] = {}
@@ -79,8 +88,8 @@ def explore(flow: Flow) -> Exploration:
         graph.add_edge(START, node, step=Step((), "", "start"))
         pending.append(node)
     while pending:
-        if len(configurations) > MAX_CONFIGURATIONS:
-            return Exploration(graph, configurations, False)
+        if len(configurations) > limit:
+            return Exploration(graph, configurations, False, limit)
         node = pending.popleft()
         tree, store = configurations[node]
         if tree[0] == "END":
@@ -91,7 +100,7 @@ def explore(flow: Flow) -> Exploration:
                 pending.append(target)
             if not graph.has_edge(node, target):
                 graph.add_edge(node, target, step=step)
-    return Exploration(graph, configurations, True)
+    return Exploration(graph, configurations, True, limit)
 
 
 def refute(flow: Flow, exploration: Exploration, loops: bool) -> list[Refutation]:
@@ -143,11 +152,12 @@ def refute(flow: Flow, exploration: Exploration, loops: bool) -> list[Refutation
             )
         )
     if loops:
-        found += _endless(root, graph, terminals)
+        attributes = {path.partition(".")[2] for path, _ in flow.initial_store()}
+        found += _endless(root, graph, terminals, attributes)
     return found
 
 
-def _endless(root, graph: nx.DiGraph, terminals: set) -> list[Refutation]:
+def _endless(root, graph: nx.DiGraph, terminals: set, attributes: set[str]) -> list[Refutation]:
     """One finding per set of states that can repeat forever: the loop reached first, at
     the transition that closes it (the one back to the state reached earliest)."""
     inner = graph.subgraph(n for n in graph if n != START and n not in terminals)
@@ -156,6 +166,8 @@ def _endless(root, graph: nx.DiGraph, terminals: set) -> list[Refutation]:
     for component in nx.strongly_connected_components(inner):
         some = min(component, key=lambda n: distance[n])
         if len(component) == 1 and not inner.has_edge(some, some):
+            continue
+        if _leaves(inner.subgraph(component)):
             continue
         cycle = nx.find_cycle(inner.subgraph(component), some)
         loops.append((distance[some], some, cycle))
@@ -171,17 +183,65 @@ def _endless(root, graph: nx.DiGraph, terminals: set) -> list[Refutation]:
         closing = inner.edges[back]["step"]
         names = " -> ".join(dict.fromkeys("/".join(s.where) for s in steps))
         path = _counterexample(root.qualified_name, graph, _path(graph, [head]), "")
+        guarded = _unmoved_guard(steps, attributes)
+        if guarded is None:
+            where, why = _position(closing, root), "no counter on the way moves toward a bound"
+        else:
+            transition, read = guarded
+            where = transition.position  # the transition that should move it
+            why = f"its guard reads '{read}', which nothing on the loop moves toward its bound"
         found.append(
             Refutation(
                 "LR0703",
-                _position(closing, root),
-                f"possible endless retry in '{root.name}': {names} can repeat forever, "
-                "no counter on the way moves toward a bound",
+                where,
+                f"possible endless retry in '{root.name}': {names} can repeat forever, {why}",
                 "count the attempts in an attribute and guard the retry with a bound",
                 Counterexample(path.chart, path.steps, tuple(steps)),
             )
         )
     return found
+
+
+def _leaves(component: nx.DiGraph) -> bool:
+    """Some counter past the window must leave the strongly connected ``component``: no step
+    in it moves the counter the other way, every round raises (or lowers) it, and every
+    round passes a guard or its range that bounds it on that side."""
+    marked = [(u, v, dict(step.marks)) for u, v, step in component.edges(data="step")]
+    sides = {(p[1:], m) for _, _, marks in marked for p, m in marks.items() if p[0] == MOVED}
+    for path, sign in sides:
+        if sign == 0 or any(marks.get(MOVED + path, sign) != sign for *_, marks in marked):
+            continue
+        rising = [(u, v) for u, v, marks in marked if marks.get(MOVED + path) == sign]
+        bounding = [(u, v) for u, v, marks in marked if marks.get(BOUNDED + path) == sign]
+        if _acyclic_without(component, rising) and _acyclic_without(component, bounding):
+            return True
+    return False
+
+
+def _acyclic_without(component: nx.DiGraph, edges: list) -> bool:
+    rest = nx.DiGraph(component.edges)
+    rest.remove_edges_from(edges)
+    return nx.is_directed_acyclic_graph(rest)
+
+
+def _unmoved_guard(steps: list[Step], attributes: set[str]) -> tuple[ast.Transition, str] | None:
+    """A transition fired on the loop whose guard reads an attribute of a scene object that
+    the loop never assigns: where the value that should bound the loop is read."""
+    written = set()
+    for step in steps:
+        for transition in step.fired:
+            written |= access(transition.action).writes
+    for step in steps:
+        for transition in step.fired:
+            if transition.guard is None:
+                continue
+            reads = access(transition.guard).reads
+            unmoved = sorted(
+                r for r in reads if r.partition(".")[2] in attributes and r not in written
+            )
+            if unmoved:
+                return transition, unmoved[0]
+    return None
 
 
 def _path(graph: nx.DiGraph, targets: list) -> list:

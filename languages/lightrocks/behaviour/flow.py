@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 from lightrocks.languages.lightrocks.behaviour.liveness import Liveness, keeps
 from lightrocks.languages.lightrocks.behaviour.store import (
+    BOUNDED,
+    MOVED,
     Evaluator,
     Frame,
     Store,
@@ -38,6 +40,7 @@ class Step:
     command: str  # ``device.command`` of an action that ended, '' for an event
     stimulus: str  # the outcome or event
     fired: tuple[ast.Transition, ...] = ()
+    marks: tuple[tuple[str, int], ...] = ()  # how it moved and bounded counters (store.py)
 
 
 @dataclass(frozen=True)
@@ -116,7 +119,8 @@ class Flow:
         for step, result in self._step(node, self.root.region, self.root_frame, store):
             after = result.node if result.node is not None else ("END", result.outcome)
             fired = (*step.fired, *result.fired)
-            step = Step(step.where, step.command, step.stimulus, fired)
+            marks = tuple((p, v) for p, v in result.store if p[0] in (MOVED, BOUNDED))
+            step = Step(step.where, step.command, step.stimulus, fired, marks)
             found.append((step, after, self.project(after, result.store)))
         return found
 
@@ -235,6 +239,8 @@ class Flow:
         self, region: Region, transition: ast.Transition, frame: Frame, store: Store
     ) -> list[Result]:
         evaluator = self.evaluator(region)
+        if transition.guard is not None:
+            store = evaluator.bound(transition.guard, frame, store)
         for statement in transition.action or ():
             store = evaluator.assign(statement, frame, store)
         target = transition.target

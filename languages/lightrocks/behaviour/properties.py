@@ -30,7 +30,7 @@ import z3
 
 from lightrocks.languages.lightrocks.access import names_of
 from lightrocks.languages.lightrocks.behaviour.checker import (
-    MAX_CONFIGURATIONS,
+    RAISE_LIMIT,
     START,
     Counterexample,
     Exploration,
@@ -38,7 +38,15 @@ from lightrocks.languages.lightrocks.behaviour.checker import (
 from lightrocks.languages.lightrocks.behaviour.flow import FINAL, Flow, Step
 from lightrocks.languages.lightrocks.behaviour.judge import constants
 from lightrocks.languages.lightrocks.behaviour.liveness import Liveness, Read
-from lightrocks.languages.lightrocks.behaviour.store import Frame, Store, resolve
+from lightrocks.languages.lightrocks.behaviour.store import (
+    WINDOW,
+    Beyond,
+    Frame,
+    Store,
+    constant,
+    fact,
+    resolve,
+)
 from lightrocks.languages.lightrocks.model import Component, Region
 from lightrocks.languages.lightrocks.properties import KINDS, outcome_names, state_names
 from lightrocks.metamodel import ast
@@ -315,9 +323,9 @@ class Properties:
             UNDECIDED,
             own,
             f"property '{own.name}' ({KINDS[own.kind]}) cannot be decided: the exploration of "
-            f"'{self.root.name}' stopped after {MAX_CONFIGURATIONS} configurations",
-            "bound the values its guards count with (the limit is "
-            "behaviour.checker.MAX_CONFIGURATIONS)",
+            f"'{self.root.name}' stopped at its limit of {self.exploration.limit:,} "
+            "configurations",
+            RAISE_LIMIT,
             None,
         )
 
@@ -360,9 +368,9 @@ class Properties:
         written: set[str] = set()
         for transition in reversed(own):
             written |= self._writes(transition)
-            for fact, expression in self._guard_facts(transition):
+            for guaranteed, expression in self._guard_facts(transition):
                 if not (self._reads(expression) & written):
-                    facts.append(fact)
+                    facts.append(guaranteed)
         return tuple(facts)
 
     def _guard_facts(self, transition: ast.Transition) -> list[tuple[z3.BoolRef, object]]:
@@ -418,7 +426,7 @@ class Properties:
     def _command_term(self, term: z3.BoolRef, evaluator, frame: Frame) -> z3.BoolRef | None:
         names = {str(c) for c in constants(term)}
         pairs = []
-        for path, (variable, constant) in evaluator.terms.read.items():
+        for path, (variable, symbol) in evaluator.terms.read.items():
             if path not in names:
                 continue
             if variable.kind == "sensor":
@@ -427,7 +435,7 @@ class Properties:
                 value = frame.value(path)
                 if value is None:
                     return None
-                pairs.append((constant, _constant(constant, value)))
+                pairs.append((symbol, constant(symbol, value)))
                 continue
             return None
         return z3.substitute(term, *pairs) if pairs else term
@@ -458,18 +466,22 @@ class Properties:
         atoms = []
         pairs = []
         shown = []
-        for path, (variable, constant) in sorted(self.terms.read.items()):
+        bounds = []
+        for path, (variable, symbol) in sorted(self.terms.read.items()):
             if path not in names:
                 continue
             if variable.kind == "unknown" and path in self.atoms:
                 value = path in active or path == moment.outcome
                 atoms.append((path, value))
-                pairs.append((constant, z3.BoolVal(value)))
+                pairs.append((symbol, z3.BoolVal(value)))
                 continue
             value = self._known(path, variable.kind, moment.store)
-            if value is not None:
+            if isinstance(value, Beyond):
                 shown.append((path, value))
-                pairs.append((constant, _constant(constant, value)))
+                bounds.append(fact(symbol, value))
+            elif value is not None:
+                shown.append((path, value))
+                pairs.append((symbol, constant(symbol, value)))
         key = (
             formula.get_id(),
             tuple(atoms),
@@ -478,7 +490,7 @@ class Properties:
         )
         if key not in self._answers:
             term = z3.simplify(z3.substitute(formula, *pairs) if pairs else formula)
-            facts = [z3.substitute(f, *pairs) if pairs else f for f in moment.facts]
+            facts = [z3.substitute(f, *pairs) if pairs else f for f in moment.facts] + bounds
             if z3.is_true(term) or z3.is_false(term):
                 answer: bool | None = z3.is_true(term)
                 why = ""
@@ -595,17 +607,12 @@ def _action(region: Region, tree: tuple, where: tuple[str, ...]):
     return None
 
 
-def _constant(term: z3.ExprRef, value) -> z3.ExprRef:
-    if isinstance(value, bool):
-        return z3.BoolVal(value)
-    if isinstance(value, tuple):
-        return z3.Q(*value)
-    return z3.IntVal(value) if z3.is_int(term) else z3.RealVal(value)
-
-
 def _shown(shown: list[tuple[str, object]]) -> str:
     parts = []
     for path, value in shown:
+        if isinstance(value, Beyond):
+            parts.append(f"{path} {'>' if value.sign > 0 else '<'} {value.sign * WINDOW}")
+            continue
         if isinstance(value, tuple):
             value = f"{value[0]}/{value[1]}"
         elif isinstance(value, bool):

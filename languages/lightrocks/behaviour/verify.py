@@ -11,6 +11,7 @@ from pathlib import Path
 from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.behaviour.checker import (
     MAX_CONFIGURATIONS,
+    RAISE_LIMIT,
     Counterexample,
     explore,
     refute,
@@ -58,22 +59,23 @@ def verify(
     search_path: Iterable[Path] = (),
     strict: bool = False,
     substituted: Mapping[Path, str] | None = None,
+    max_configurations: int = MAX_CONFIGURATIONS,
 ) -> Verification:
     """Check the models below ``paths`` (with ``search_path`` as further model-path roots);
-    when that finds no error, model-check every task, skill and plain statechart with an end.
-    ``substituted`` maps resolved paths to texts that stand in for those files (as in
-    :func:`check`)."""
+    when that finds no error, model-check every task, skill and plain statechart with an end,
+    exploring at most ``max_configurations`` configurations of each. ``substituted`` maps
+    resolved paths to texts that stand in for those files (as in :func:`check`)."""
     context = check(list(paths), list(search_path), substituted=substituted)
     result = Verification(list(context.diagnostics.items), strict=strict)
     if context.diagnostics.has_errors:
         return result
     with SOLVER_TURN:
-        _model_check(analysis(context), result)
+        _model_check(analysis(context), result, max_configurations)
     result.diagnostics.sort()
     return result
 
 
-def _model_check(a: object, result: Verification) -> None:
+def _model_check(a: object, result: Verification, limit: int) -> None:
     """The refuted properties of every task, skill and plain statechart with an end."""
     liveness = Liveness()
     seen: set[tuple[str, object]] = set()
@@ -82,15 +84,15 @@ def _model_check(a: object, result: Verification) -> None:
             continue
         stated = component.region.properties
         flow = Flow(a.typing, component, PropertyLiveness(component) if stated else liveness)
-        exploration = explore(flow)
+        exploration = explore(flow, limit)
         if not exploration.complete:
             diagnostic = Diagnostic.at(
                 component.statechart.position,
                 "LR0704",
                 SEVERITY["LR0704"],
-                f"verification of '{component.name}' stopped after {MAX_CONFIGURATIONS} "
+                f"verification of '{component.name}' stopped at its limit of {limit:,} "
                 "configurations: its properties are not proved",
-                "bound the values its guards count with",
+                RAISE_LIMIT,
             )
             result.diagnostics.append(diagnostic)
         for refutation in refute(flow, exploration, loops=component.layer is not None):
