@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from cocos.models import PICK, Case, replace
+from cocos.models import JOB, PICK, Case, replace
 
 PAIR = """\
 package misc;
@@ -35,6 +35,14 @@ RETRIED = replace(
     "  Reach -> failed [arm.force > 25 N] blocked;\n"
     "  Reach -> Reach [arm.force < 25 N] blocked;\n  Reach -> failed blocked;\n",
 )
+
+MARKED = replace(PICK, "Reach -> picked done;", "Reach -> picked done / { part.depth = 5 mm; };")
+
+
+def _job(transitions: str) -> str:
+    job = replace(JOB, "import skills.*;", "import cell.Cell;\nimport skills.*;")
+    return replace(job, "  PickPart -> ok picked;\n", transitions)
+
 
 DATAFLOW_CASES: list[Case] = [
     Case(
@@ -104,5 +112,22 @@ DATAFLOW_CASES: list[Case] = [
         "13:3 did not fire",
         also=frozenset({"LR0605"}),
         variant="earlier",
+    ),
+    Case(
+        "LR0616",
+        ok={
+            "skills/Pick.lr": MARKED,
+            "tasks/Job.lr": _job(
+                "  PickPart -> failed [part.depth > 4 mm] picked;\n  PickPart -> ok picked;\n"
+            ),
+        },
+        bad={
+            "skills/Pick.lr": MARKED,
+            "tasks/Job.lr": _job(
+                "  PickPart -> failed [@@part.depth > 6 mm] picked;\n  PickPart -> ok picked;\n"
+            ),
+        },
+        message="'PickPart' ended with 'picked', so [part.depth == 5 mm] held",
+        variant="reached",
     ),
 ]

@@ -255,7 +255,53 @@ class Context:
                 return []
             shown = f"[{text(start.expression)}]"
             return [Fact(start.expression, True, f"start condition '{start.name}' {shown} holds")]
-        return self._outcome(info, key) if info is not None else []
+        if info is None or info.imported is None:
+            return []
+        if info.imported.layer == "action":
+            return self._outcome(info, key)
+        return self._reached(info, key)
+
+    def _reached(self, info: StateInfo, key: str) -> list[Fact]:
+        """What a composite child guarantees when it ends with ``key``: one of the
+        transitions into that end was taken, so its guard held and the constants its action
+        assigns are the values now. A guard part that reads what is written on the way out
+        (by the transition or the child's own actions) says nothing, and a way in that
+        guarantees nothing leaves nothing known."""
+        child = info.imported
+        top = child.region
+        if top.orthogonal or key not in top.outcomes:
+            return []
+        inner = [t for r in top.regions()[1:] for t in r.transitions if t.target == key]
+        ways = [t for t in top.transitions if t.target == key]
+        if inner or not ways:
+            return []
+        leaving = {w for a in top.actions for w in child.access(a).writes}
+        cases = []
+        for way in ways:
+            written = leaving | {w for s in way.action or () for w in child.access(s).writes}
+            parts = []
+            if way.guard is not None and not _touches_any(way.guard, written):
+                parts.append(way.guard)
+            for statement in way.action or ():
+                value = getattr(statement, "value", None)
+                if isinstance(statement, ast.Assignment) and not access(value).reads:
+                    path = next(iter(child.access(statement).writes), None)
+                    later = [t for t in way.action if t is not statement]
+                    again = any(path in child.access(t).writes for t in later)
+                    if path is not None and path not in leaving and not again:
+                        parts.append(ast.Binary("==", statement.target, value))
+            if not parts:
+                return []
+            case = _joined("&&", parts)
+            if all(text(case) != text(c) for c in cases):
+                cases.append(case)
+        expression = _joined("||", cases)
+        rewritten = self._in_parent(expression, child, info)
+        if rewritten is None:
+            return []
+        self._kept.append(rewritten)
+        shown = f"[{text(expression)}]"
+        return [Fact(rewritten, True, f"'{info.name}' ended with '{key}', so {shown} held")]
 
     def _outcome(self, info: StateInfo, key: str) -> list[Fact]:
         """What an action child's end conditions say when it ends with ``key``: that one
@@ -269,9 +315,7 @@ class Context:
         facts = []
         for condition in ends:
             held = condition.name == key
-            if condition.expression is not None and not any(
-                _overlap(r, w) for r in access(condition.expression).reads for w in written
-            ):
+            if condition.expression is not None and not _touches_any(condition.expression, written):
                 rewritten = self._in_parent(condition.expression, child, info)
                 if rewritten is not None:
                     self._kept.append(rewritten)
@@ -305,6 +349,8 @@ class Context:
 
         def value(name: str) -> ast.Expression | None:
             parameter = parameters[name]
+            if name in child.assigned:
+                return None  # the child's variable: its value is the child's by now
             given = bound.get(name)
             if parameter.type == "Object":
                 return given if given is not None and names_of(given) is not None else None
@@ -350,6 +396,17 @@ class Context:
 
 
 _MISSING = object()
+
+
+def _touches_any(expression: ast.Expression, written: set[str]) -> bool:
+    return any(_overlap(r, w) for r in access(expression).reads for w in written)
+
+
+def _joined(operator: str, parts: list[ast.Expression]) -> ast.Expression:
+    joined = parts[0]
+    for part in parts[1:]:
+        joined = ast.Binary(operator, joined, part)
+    return joined
 
 
 def _connected(guard: ast.Expression, facts: list[Fact]) -> list[Fact]:
