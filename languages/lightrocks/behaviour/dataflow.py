@@ -382,7 +382,9 @@ class Context:
             return node
 
         found = rewrite(expression)
-        return None if _missing(found) else found
+        if _missing(found) or _touches_any(found, set(self.component.access(info.state).writes)):
+            return None  # the state's own exit action has changed it before the guard reads it
+        return found
 
     def _terms(self, facts: list[Fact]) -> list[z3.BoolRef]:
         terms = [self.conditions.guard_term(f.expression) for f in facts]
