@@ -29,15 +29,16 @@ def _expect(case: Path) -> dict:
 
 
 def _findings(case: Path) -> tuple[Path, list[Diagnostic]]:
-    """The broken file and the findings on its root with that file's text substituted."""
+    """The broken file and the findings on it with its text substituted, its root the model
+    path (what a user runs on the file they changed)."""
     expect = _expect(case)
     root = ROOT / expect.get("root", "examples")
     file = (root / expect["file"]).resolve()
     assert file.is_file(), f"{case.name}: {expect['file']} is no file of {root}"
     substituted = {file: (case / expect["file"]).read_text(encoding="utf-8")}
     if expect["stage"] == "verify":
-        return file, verify([root], substituted=substituted).diagnostics
-    return file, check([root], substituted=substituted).diagnostics.items
+        return file, verify([file], [root], substituted=substituted).diagnostics
+    return file, check([file], [root], substituted=substituted).diagnostics.items
 
 
 def test_the_corpus_covers_many_kinds_several_times() -> None:

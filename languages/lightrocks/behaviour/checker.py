@@ -17,7 +17,7 @@ Every refutation carries the path that shows it, shortest first.
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from itertools import pairwise
 
 import networkx as nx
@@ -61,6 +61,9 @@ class Exploration:
     configurations: list[tuple]
     complete: bool
     limit: int = MAX_CONFIGURATIONS  # the configurations it was allowed
+    endings: dict[int, list[tuple[Step, str, tuple]]] = field(default_factory=dict)
+    """The steps from a configuration that end the run: the step, the outcome and the store
+    after it (the graph's end nodes keep no store)."""
 
     def tree(self, node: object) -> tuple:
         return ("START",) if node == START else self.configurations[node][0]
@@ -71,6 +74,7 @@ def explore(flow: Flow, limit: int = MAX_CONFIGURATIONS) -> Exploration:
     a configuration is a graph node by its number (hashing the nested configuration once)."""
     graph = nx.DiGraph()
     graph.add_node(START)
+    endings: dict[int, list[tuple[Step, str, tuple]]] = {}
     numbers: dict[tuple, int] = {}
     configurations: list[tuple] = []
     pending: deque[int] = deque()
@@ -89,18 +93,20 @@ def explore(flow: Flow, limit: int = MAX_CONFIGURATIONS) -> Exploration:
         pending.append(node)
     while pending:
         if len(configurations) > limit:
-            return Exploration(graph, configurations, False, limit)
+            return Exploration(graph, configurations, False, limit, endings)
         node = pending.popleft()
         tree, store = configurations[node]
         if tree[0] == "END":
             continue
         for step, after, kept in flow.successors(tree, store):
+            if after[0] == "END":
+                endings.setdefault(node, []).append((step, after[1], kept))
             target, new = number((after, () if after[0] == "END" else kept))
             if new:
                 pending.append(target)
             if not graph.has_edge(node, target):
                 graph.add_edge(node, target, step=step)
-    return Exploration(graph, configurations, True, limit)
+    return Exploration(graph, configurations, True, limit, endings)
 
 
 def refute(flow: Flow, exploration: Exploration, loops: bool) -> list[Refutation]:

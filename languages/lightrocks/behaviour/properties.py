@@ -344,13 +344,10 @@ class Properties:
                 continue
             configuration, store = self.exploration.configurations[node]
             found.append(Moment(node, configuration, store))
-            if any(
-                tree(n)[0] == "END" and tree(n)[1] in self._ends for n in graph.successors(node)
-            ):
-                for step, after, kept in self.flow.successors(configuration, store):
-                    if after[0] == "END" and after[1] in self._ends:
-                        facts = self._facts(configuration, step)
-                        found.append(Moment(node, configuration, kept, step, after[1], facts))
+            for step, outcome, kept in self.exploration.endings.get(node, ()):
+                if outcome in self._ends:
+                    facts = self._facts(configuration, step)
+                    found.append(Moment(node, configuration, kept, step, outcome, facts))
         for node in graph.successors(START):
             if tree(node)[0] == "END" and tree(node)[1] in self._ends:  # ends as it starts
                 found.append(Moment(START, (), (), Step((), "", "start"), tree(node)[1]))

@@ -88,16 +88,16 @@ class Evaluator:
         self._answers: dict[tuple, list[int | None]] = {}
         self._read: dict[int, frozenset[str]] = {}
         self._values: dict[tuple, Value | None] = {}
+        self._guard_lists: dict[tuple, tuple] = {}  # the guards kept: their ids stay theirs
 
     def first_enabled(
         self, guards: list[ast.Expression | None], frame: Frame, store: Store
     ) -> list[int | None]:
         """Which of the guards can be the first to hold (index), and whether none can
         (``None``): the choices the real system has."""
-        terms = [z3.BoolVal(True) if g is None else self._condition(g) for g in guards]
-        paths = set().union(*(self._reads(g) for g in guards if g is not None))
+        terms, paths, ids = self._guards(guards)
         shown = self._shown(paths, frame, store)
-        key = (tuple(term.get_id() for term in terms), shown)  # by structure: solved once
+        key = (ids, shown)  # by structure: solved once
         if key in self._answers:
             return self._answers[key]
         found = self._decided(terms, shown) if len(shown) == len(paths) else None
@@ -118,6 +118,15 @@ class Evaluator:
                 found.append(None)
         self._answers[key] = found
         return found
+
+    def _guards(self, guards: list[ast.Expression | None]) -> tuple[list, set[str], tuple]:
+        """The terms of a list of guards, what they read and their structure, found once."""
+        key = tuple(id(g) for g in guards)
+        if key not in self._guard_lists:
+            terms = [z3.BoolVal(True) if g is None else self._condition(g) for g in guards]
+            paths = set().union(*(self._reads(g) for g in guards if g is not None))
+            self._guard_lists[key] = (terms, paths, tuple(t.get_id() for t in terms), guards)
+        return self._guard_lists[key][:3]
 
     def _decided(self, terms: list[z3.BoolRef], shown: tuple) -> list[int | None] | None:
         """The first guard that holds, when every value they read is known exactly: the
