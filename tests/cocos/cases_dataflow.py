@@ -54,6 +54,21 @@ DATAFLOW_CASES: list[Case] = [
         hint="let one region write it",
     ),
     Case(
+        "LR0614",
+        ok={
+            "misc/Pair.lr": replace(
+                replace(PAIR, "{ m = 2; }", "{ n = n + 2; }"), "{ n = 1; }", "{ n = n - 1; }"
+            )
+        },
+        bad={
+            "misc/Pair.lr": replace(
+                replace(PAIR, "{ m = 2; }", "{ @@n = 2 * n; }"), "{ n = 1; }", "{ n = n - 1; }"
+            )
+        },
+        message="region 'Right' writes 'n', and so does region 'Left'",
+        variant="accumulating",
+    ),
+    Case(
         "LR0615",
         ok={"misc/Pair.lr": replace(PAIR, "C -> D tock", "C -> D [m == 0] tock")},
         bad={

@@ -46,7 +46,7 @@ def races(component: Component, region: Region) -> Iterator[Finding]:
             both: set[str] = set()
             for touch in _first_per_path(t for t in mine if t.writes):
                 found = _meeting(touch, (t for t in theirs if t.writes))
-                if found is None:
+                if found is None or _commute(touch.path, (*mine, *theirs)):
                     continue
                 both |= {touch.path, found.path}
                 here, there = (name, touch), (other, found)
@@ -98,6 +98,25 @@ def _prefer(
         for w, touches in ((one[1], earlier), (other[1], later))
     ]
     return uses[0] < uses[1]
+
+
+def _commute(path: str, touches: tuple[Touch, ...]) -> bool:
+    """Every write of ``path`` adds to it or takes from it what does not read it
+    (``count = count + 1``): the writes commute, any order leaves the same value."""
+    writes = [t for t in touches if t.writes and _overlap(t.path, path)]
+    return all(_accumulates(t.node) for t in writes)
+
+
+def _accumulates(node: object) -> bool:
+    match node:
+        case ast.Assignment(target=target, value=ast.Binary(operator="+" | "-", left=left)):
+            chain = names_of(target)
+            return (
+                chain is not None
+                and names_of(left) == chain
+                and ".".join(chain) not in access(node.value.right).reads
+            )
+    return False
 
 
 def _first_per_path(touches: Iterator[Touch]) -> list[Touch]:
