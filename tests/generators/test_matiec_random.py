@@ -13,6 +13,7 @@ failure names the seed and the script, so it can be replayed with :func:`steps_a
 
 from __future__ import annotations
 
+import os
 import random
 from collections import Counter
 from collections.abc import Callable
@@ -41,9 +42,12 @@ from lightrocks.app.run import drive
 from lightrocks.workbench.generators import GenerationError
 
 CHARTS = 6
-SWEEP = 120
+SWEEP = int(os.environ.get("LIGHTROCKS_MATIEC_SWEEP", "48"))
 TIED = 12
-TIED_SWEEP = 60
+TIED_SWEEP = SWEEP // 2
+"""The slow sweeps' sizes: every seed compiles a chart with MatIEC and gcc (seconds each);
+``LIGHTROCKS_MATIEC_SWEEP=400 pytest -m slow tests/generators/test_matiec_random.py`` runs a
+wider one."""
 SEQUENCES = 3
 SETTLING = f"+{round(TICK * 4000)}ms"  # every script ends letting the longest delay pass
 REFUSED = "the SFC target does not map"
