@@ -159,13 +159,31 @@ def _builtin_outcomes(info: StateInfo, leaving: dict[str, list[ast.Transition]])
 
 
 def _handler_hint(name: str, outcome: str, leaving: dict[str, list[ast.Transition]]) -> str:
-    """The fix where a sibling shows it: handle the outcome as the sibling does."""
+    """The fix where the siblings show it, only where it is right for the outcome: the place
+    most siblings send ``outcome`` to without a guard (a guarded handling is by case), none
+    through a history state, and for ``timeout`` or ``error`` (a fault, not a result to
+    retry on) a place that does not lead back to the child."""
+    targets: list[str] = []
     for source, transitions in leaving.items():
         for transition in transitions:
-            target = transition.target
-            if source != name and transition.stimulus == outcome and target not in ("", name):
-                return f"add the transition '{name} -> {target} {outcome};'"
-    return ""
+            if source == name or transition.stimulus != outcome:
+                continue
+            if transition.target_history:
+                return ""  # resumed where it was: no answer to copy
+            if transition.guard is None:
+                targets.append(transition.target)
+    if not targets:
+        return ""
+    target = max(dict.fromkeys(targets), key=targets.count)
+    if target in ("", name) or (outcome in BUILTIN_OUTCOMES and _leads_back(target, name, leaving)):
+        return ""
+    return f"add the transition '{name} -> {target} {outcome};'"
+
+
+def _leads_back(target: str, name: str, leaving: dict[str, list[ast.Transition]]) -> bool:
+    """From ``target`` the region can come back to ``name``: the handling retries the work."""
+    graph = nx.DiGraph((s, t.target) for s, ts in leaving.items() for t in ts)
+    return target in graph and name in graph and nx.has_path(graph, target, name)
 
 
 @coco("LR0211", Severity.WARNING, "no two transitions fire on the same outcome")
