@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import fields, is_dataclass, replace
+from functools import cached_property
 
 from lightrocks.languages.domain.types import DeviceT
 from lightrocks.languages.lightrocks.behaviour.conditions import Finding, start_of
@@ -43,6 +44,11 @@ class Plausibility:
         self.region = component.region
         self.defaults = {n: p.default for n, p in self.region.parameters.items() if p.default}
 
+    @cached_property
+    def scope(self) -> Scope:
+        """The names of the action's region, resolved once for every judgement."""
+        return Scope(self.typing, self.region)
+
     def findings(self) -> Iterator[Finding]:
         call = self.call()
         if call is None:
@@ -64,7 +70,7 @@ class Plausibility:
                     function.target, ast.Name
                 ):
                     continue
-                device = Scope(self.typing, self.region).env.get(function.target.name)
+                device = self.scope.env.get(function.target.name)
                 if not isinstance(device, DeviceT) or device.device is None:
                     continue
                 command = next((c for c in device.device.commands if c.name == function.name), None)
@@ -87,7 +93,7 @@ class Plausibility:
     def _budget(
         self, device: str, command: ast.Command, arguments: dict[str, ast.Expression]
     ) -> Iterator[Finding]:
-        declared = Scope(self.typing, self.region).env.get(device)
+        declared = self.scope.env.get(device)
         written = self.component.command_budget(declared.device)
         goal = goal_argument(command, arguments)
         if written.stereotype is None or goal is None:
@@ -209,7 +215,7 @@ class Plausibility:
         needs and its kind: a ``force`` of the sign a contact cannot have (it pushes back
         against the motion), a ``travel`` (a length that is 0 when the command starts)
         against the motion. ``given`` says what is known of the parameters read."""
-        terms = Terms(Scope(self.typing, self.region))
+        terms = Terms(self.scope)
         judge = Judge(terms)
         for condition in self.region.end_conditions:
             if condition.expression is None or condition.position.file != file_of(self.component):
