@@ -26,7 +26,24 @@ from lightrocks.workbench.passes import Finding, Pass
 W = Severity.WARNING
 
 
-class BehaviourPass(Pass):
+class JudgedPass(Pass):
+    """A pass whose findings the solver judges once, when the pass is made, one check at a
+    time (:data:`SOLVER_TURN`); a subclass says what it judges in :meth:`_judge`."""
+
+    def __init__(self, context: CheckContext) -> None:
+        super().__init__(context)
+        with SOLVER_TURN:
+            self.judged = list(self._judge())
+
+    def _judge(self) -> Iterator[Judged]:
+        raise NotImplementedError
+
+    def findings(self) -> Iterator[Finding]:
+        for judged in self.judged:
+            yield judged.code, judged.position, judged.message, judged.hint
+
+
+class BehaviourPass(JudgedPass):
     """Judges the conditions of every region and the commands of every action of the run;
     nothing is judged while names or unit dimensions do not resolve (LR0103, LR0304)."""
 
@@ -45,11 +62,6 @@ class BehaviourPass(Pass):
         Code("LR0612", W, "a wait or a child's budget is shorter than the budget enclosing it"),
         Code("LR0613", W, "an action's end condition is not implied by its start condition"),
     )
-
-    def __init__(self, context: CheckContext) -> None:
-        super().__init__(context)
-        with SOLVER_TURN:
-            self.judged = list(self._judge())
 
     def _judge(self) -> Iterator[Judged]:
         a = analysis(self.context)
@@ -74,7 +86,3 @@ class BehaviourPass(Pass):
         for file, expressions in a.typing.inferred.items():
             if file in own_files:
                 yield from degree_findings(expressions)
-
-    def findings(self) -> Iterator[Finding]:
-        for judged in self.judged:
-            yield judged.code, judged.position, judged.message, judged.hint

@@ -9,17 +9,15 @@ from lightrocks.languages.lightrocks.analysis import analysis
 from lightrocks.languages.lightrocks.behaviour.conditions import Conditions
 from lightrocks.languages.lightrocks.behaviour.conditions import Finding as Judged
 from lightrocks.languages.lightrocks.behaviour.dataflow import Context, races
-from lightrocks.languages.lightrocks.behaviour.judge import SOLVER_TURN
 from lightrocks.languages.lightrocks.behaviour.parameters import ParameterValues
-from lightrocks.workbench.check import CheckContext
+from lightrocks.languages.lightrocks.cocos_behaviour import JudgedPass
 from lightrocks.workbench.cocos import Code
 from lightrocks.workbench.diagnostics import Severity
-from lightrocks.workbench.passes import Finding, Pass
 
 W = Severity.WARNING
 
 
-class DataflowPass(Pass):
+class DataflowPass(JudgedPass):
     """Follows what the regions of every component write and test, and judges each guard
     with what is known where it is taken; guards are not judged while names or unit
     dimensions do not resolve (LR0103, LR0304)."""
@@ -29,11 +27,6 @@ class DataflowPass(Pass):
         Code("LR0615", W, "no region writes what an orthogonal region tests"),
         Code("LR0616", W, "a guard can hold where its transition is taken"),
     )
-
-    def __init__(self, context: CheckContext) -> None:
-        super().__init__(context)
-        with SOLVER_TURN:
-            self.judged = list(self._judge())
 
     def _judge(self) -> Iterator[Judged]:
         a = analysis(self.context)
@@ -46,7 +39,3 @@ class DataflowPass(Pass):
                 yield from races(component, region)
                 if values is not None:
                     yield from Context(Conditions(a.typing, values, component, region)).findings()
-
-    def findings(self) -> Iterator[Finding]:
-        for judged in self.judged:
-            yield judged.code, judged.position, judged.message, judged.hint

@@ -7,18 +7,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from cocos.models import DEVICES, MOVE
 
 from lightrocks.languages.lightrocks.behaviour.verify import verify
-
-DEVICES = """\
-package robots;
-
-device Arm {
-  command move(Length x);
-  sensor Boolean done;
-  sensor Force force;
-}
-"""
 
 CELL = """\
 package cell;
@@ -28,19 +19,6 @@ import robots.*;
 cell Cell {
   arm : Arm;
   object part { Integer tries = 0 RANGE; Integer other = 0; }
-}
-"""
-
-MOVE = """\
-package actions;
-
-import cell.Cell;
-
-<<action>> statechart Move {
-  parameters { Length x = 10 mm; }
-  do / arm.move(x = x);
-  end condition done [arm.done];
-  end condition blocked [arm.force > 20 N];
 }
 """
 

@@ -66,7 +66,7 @@ class Conditions:
             leaving.setdefault(transition.source, []).append(transition)
         return leaving
 
-    def _keys(self, source: str, transition: ast.Transition) -> list[str]:
+    def keys(self, source: str, transition: ast.Transition) -> list[str]:
         """What a transition reacts to: its stimulus, or every declared outcome of a child
         when it has none (a completion transition), or the delay of a time event."""
         if transition.delay is not None:
@@ -81,7 +81,7 @@ class Conditions:
         candidates: dict[str, list[ast.Transition]] = {}
         if len(leaving) > 1:
             for transition in leaving:
-                for key in self._keys(source, transition):
+                for key in self.keys(source, transition):
                     candidates.setdefault(key, []).append(transition)
         alone = all(len(c) == 1 for c in candidates.values())
         for transition in leaving:

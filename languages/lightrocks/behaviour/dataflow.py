@@ -202,9 +202,11 @@ class Context:
         if start is None and (info is None or info.imported is None):
             return None  # nothing known but earlier guards: LR0604's
         contexts = []
-        for key in self._keys(source, transition):
+        for key in self.conditions.keys(source, transition):
             earlier = [
-                t for t in leaving[: leaving.index(transition)] if key in self._keys(source, t)
+                t
+                for t in leaving[: leaving.index(transition)]
+                if key in self.conditions.keys(source, t)
             ]
             if any(t.guard is None for t in earlier):
                 return None  # an unguarded transition takes the stimulus first: LR0211, LR0604
@@ -235,17 +237,6 @@ class Context:
             f"this guard never holds when the transition is taken: {'; '.join(reasons)}",
             "the transition never fires; correct the guard or what it contradicts",
         )
-
-    def _keys(self, source: str, transition: ast.Transition) -> list[str]:
-        """What a transition reacts to, as the judgement of shadowing counts it: its
-        stimulus, or every declared outcome of a child for a completion, or its delay."""
-        if transition.delay is not None:
-            return [f"after@{transition.stimulus_position}"]
-        info = self.region.states.get(source)
-        outcomes = info.outcomes if info is not None else None
-        if transition.stimulus or outcomes is None:
-            return [transition.stimulus]
-        return list(outcomes)
 
     def _needed(self, guard: z3.BoolRef, facts: list[Fact]) -> list[str] | None:
         """The reasons of the facts the guard contradicts, fewest first found; None when it

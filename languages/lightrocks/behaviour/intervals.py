@@ -78,7 +78,7 @@ class Durations:
         model = self.judge.possible(*given) if given else self.judge.possible(term == term)
         if isinstance(model, bool):
             return "this duration"
-        value = model.eval(term, model_completion=True)
+        value = model.evaluate(term, model_completion=True)
         if not z3.is_rational_value(value):
             return "this duration"
         return seconds_text(float(Fraction(value.as_fraction())))
